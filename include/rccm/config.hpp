@@ -1,0 +1,112 @@
+// The run configuration: plain structs read from a libconfig file in one place.
+//
+// Units (MODEL.md): mm, N, MPa (= N/mm^2), s. Plane problems are per unit thickness
+// (1 mm), so a nodal force is in N and an interface stiffness C in MPa/mm.
+// The schema is documented in README.md ("Configuration reference").
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+/// Piecewise-linear function of time given by points (t_k, v_k); constant outside.
+struct TimeFunction {
+  std::vector<double> t, v;
+  double operator()(double time) const;
+};
+
+/// A named set of mesh nodes selected by a box [xmin, xmax, ymin, ymax] (mm).
+struct NodeSetDef {
+  std::string name;
+  std::array<double, 4> box{};
+};
+
+enum class ElementType { T3, Q4 };
+enum class Hypothesis { PlaneStrain, PlaneStress };
+
+struct MeshParams {
+  std::array<double, 2> origin{0.0, 0.0};  // mm
+  std::array<double, 2> size{};            // mm
+  int nx = 0, ny = 0;                      // cells along x and y
+  ElementType element = ElementType::T3;
+  std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners
+};
+
+struct MaterialParams {
+  double E = 0.0;   // Young's modulus, MPa
+  double nu = 0.0;  // Poisson's ratio, in (-1, 0.5)
+  Hypothesis hypothesis = Hypothesis::PlaneStrain;
+};
+
+/// RCCM interface law against a rigid foundation (MODEL.md s2-3).
+struct InterfaceParams {
+  std::string boundary;                 // node set of the contact nodes
+  std::array<double, 2> normal{0.0, 1.0};  // foundation normal, into the body
+  double Cn = 0.0, Ct = 0.0;            // initial stiffnesses, MPa/mm
+  double w = 0.0;                       // adhesion energy threshold, mJ/mm^2 = N/mm
+  double alpha = 1.0;                   // viscosity, N s/mm
+  double mu = 0.0;                      // Coulomb coefficient
+  std::vector<double> beta0{1.0};       // one value, or one per contact node
+  double g0 = 0.0;                      // initial gap, mm
+};
+
+enum class LoadKind { Displacement, Force, Traction };
+
+/// A load on one component of a node set, scaled in time by `amplitude`.
+/// Displacement: mm per node; Force: N per node; Traction: MPa along the set's edges.
+struct LoadParams {
+  std::string node_set;
+  LoadKind kind = LoadKind::Displacement;
+  int component = 0;  // 0 = x, 1 = y
+  TimeFunction amplitude;
+  int line = 0;       // where it was defined, for messages
+};
+
+struct TimeParams {
+  double T = 0.0;   // final time, s
+  int steps = 210;  // fixed steps (the paper's 210 increments)
+};
+
+enum class SweepForm { GaussSeidel, Jacobi };
+enum class RhoRule { Eigen, Paper };
+
+/// Numerics of the bipotential contact solve (MODEL.md s5).
+struct SolverParams {
+  double tolerance = 1e-10;      // relative change of Rbar and scaled natural-map residual
+  int max_iterations = 2000;     // sweeps per contact solve
+  int local_iterations = 100;    // predictor-corrector steps per node and sweep (Gauss-Seidel)
+  SweepForm form = SweepForm::GaussSeidel;
+  RhoRule rho = RhoRule::Eigen;  // eigen: 1/lambda_max of the node block; paper: eq. 34
+  double relaxation = 1.0;       // Jacobi under-relaxation of the update, in (0, 1]
+  bool active_set = true;        // exact solve once the status pattern repeats
+};
+
+struct WatchPoint {
+  std::string name;
+  std::array<double, 2> point{};  // mm; the nearest contact node is watched
+};
+
+struct OutputParams {
+  std::string directory = "results";
+  std::vector<double> times;      // s, in [0, T]
+  std::vector<WatchPoint> watch;
+};
+
+struct Config {
+  std::string file;  // path it was read from
+  MeshParams mesh;
+  MaterialParams material;
+  InterfaceParams interface;
+  std::vector<LoadParams> loads;
+  TimeParams time;
+  SolverParams solver;
+  OutputParams output;
+};
+
+/// Reads and checks a config file; `overrides` are "path=value" strings (the
+/// command line's --set). Throws InputError "file:line: setting: what is wrong".
+Config load_config(const std::string& path, const std::vector<std::string>& overrides = {});
+
+}  // namespace rccm

@@ -1,0 +1,61 @@
+// The condensed interface problem at fixed beta (MODEL.md s4):
+//
+//   u = W0 y + q0,   y = Rbar + E u,   E = D1 - D(beta),
+//   D(beta) = diag(a_i beta_i^2 Ct, a_i beta_i^2 Cn),  D1 = D(1),
+//
+// with W0 = P K0^-1 P^T the flexibility that already holds the springs at beta = 1, and
+// Rbar subject, node by node, to Signorini-Coulomb with mubar_i = mu (1 - beta_i), the gap
+// g = g0 + u_n and the slip du_t = u_t - ut_ref measured from the last accepted state.
+// With D1 = D(beta) = 0 it is the plain frictional contact problem (W, q, mu) of Siconos.
+#pragma once
+
+#include "rccm/rccm_law.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace rccm {
+
+struct ContactProblem {
+  const Eigen::MatrixXd* W0 = nullptr;  // 2nc x 2nc flexibility, mm/N
+  Eigen::VectorXd q0;                   // free response (interface forces zero), mm
+  Eigen::VectorXd D1, Dbeta;            // spring stiffness per component, N/mm
+  Eigen::VectorXd mubar;                // per node
+  Eigen::VectorXd g0;                   // initial gap per node, mm
+  Eigen::VectorXd ut_ref;               // last accepted u_t per node, mm
+
+  int size() const { return static_cast<int>(mubar.size()); }
+};
+
+struct ContactSolution {
+  Eigen::VectorXd Rbar;  // contact + friction part of the reaction, N (t, n per node)
+  Eigen::VectorXd u;     // interface displacement, mm
+  Eigen::VectorXd y;     // Rbar + E u
+  std::vector<Status> status;
+  int iterations = 0;        // sweeps
+  int local_iterations = 0;  // predictor-corrector steps summed over nodes and sweeps
+  int exact_solves = 0;      // active-set linear solves
+  double residual = 0;       // largest scaled natural-map residual
+  int worst_node = -1;       // node of that residual
+  bool converged = false;
+
+  /// Adhesive part Radh = -D(beta) u (MODEL.md s3).
+  Eigen::VectorXd Radh(const ContactProblem& pb) const;
+};
+
+/// Residuals of the Signorini-Coulomb conditions, each relative to the problem's scale
+/// (forces to the largest interface force, displacements to the largest |u|).
+struct ContactResiduals {
+  double penetration = 0;     // max(0, -g)
+  double tension = 0;         // max(0, -Rbar_n)
+  double complementarity = 0; // |g Rbar_n|
+  double coulomb = 0;         // max(0, |Rbar_t| - mubar Rbar_n)
+  double stick_slip = 0;      // |du_t| where |Rbar_t| < mubar Rbar_n (strictly inside)
+  double slip_direction = 0;  // max(0, Rbar_t du_t) at sliding nodes (friction must oppose slip)
+  double max() const;
+};
+
+ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s);
+
+}  // namespace rccm

@@ -1,0 +1,36 @@
+// Error types of rccm and the always-on check macro.
+//
+// Exit statuses of the rccm executable follow the error type:
+//   InputError  -> 2  (bad config, bad command line: nothing was run or written)
+//   SolveError  -> 3  (a run that could not go on: it says where and what to change)
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+namespace rccm {
+
+/// Bad input: the message names the file, line and setting (see Config).
+struct InputError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A solve that failed: the message names time, step, node and a suggestion.
+struct SolveError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+/// A broken internal invariant (a bug in rccm, not in the input).
+struct InternalError : std::logic_error {
+  using std::logic_error::logic_error;
+};
+
+}  // namespace rccm
+
+/// Always-on check of an internal invariant; appends file:line (as MFEM_VERIFY).
+#define RCCM_VERIFY(cond, msg)                                                       \
+  do {                                                                               \
+    if (!(cond))                                                                     \
+      throw ::rccm::InternalError(std::string(msg) + " [" __FILE__ ":" +             \
+                                  std::to_string(__LINE__) + "]");                   \
+  } while (0)

@@ -1,0 +1,204 @@
+#include "rccm/bipotential_solver.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/Eigenvalues>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+using Mat2 = Eigen::Matrix2d;
+
+/// What node i needs for its local solve, fixed during one contact solve.
+/// With b = u_i - W_ii y_i (the other nodes' contribution), the node's displacement as
+/// a function of its own Rbar is u_i = Wb (Rbar + E_i u_i ... ) = Wb Rbar + M b, where
+/// M = (I - W_ii E_i)^-1 and Wb = M W_ii: the spring is folded in (MODEL.md s4).
+struct NodeBlock {
+  Mat2 Wii;    // diagonal block of W0
+  Vec2 E;      // D1 - D(beta)
+  Mat2 M, Wb;  // (I - W_ii E)^-1 and the effective flexibility
+  double rho;  // predictor step, N/mm
+  bool fixed;  // both components prescribed: u_i does not depend on Rbar_i
+};
+
+std::vector<NodeBlock> make_blocks(const ContactProblem& pb, RhoRule rule) {
+  const Eigen::MatrixXd& W = *pb.W0;
+  std::vector<NodeBlock> blocks(pb.size());
+  const double scale = W.diagonal().cwiseAbs().maxCoeff();
+  for (int i = 0; i < pb.size(); ++i) {
+    NodeBlock& b = blocks[i];
+    b.Wii = W.block<2, 2>(2 * i, 2 * i);
+    b.E = pb.D1.segment<2>(2 * i) - pb.Dbeta.segment<2>(2 * i);
+    const Mat2 A = Mat2::Identity() - b.Wii * b.E.asDiagonal();
+    if (std::abs(A.determinant()) < 1e-12) {
+      std::ostringstream m;
+      m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
+        << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
+      throw SolveError(m.str());
+    }
+    b.M = A.inverse();
+    b.Wb = b.M * b.Wii;
+    b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
+    const Eigen::SelfAdjointEigenSolver<Mat2> eig(b.Wb, Eigen::EigenvaluesOnly);
+    const double lmax = eig.eigenvalues()[1];
+    b.fixed = lmax <= 1e-14 * scale;
+    if (b.fixed) {
+      b.rho = 0;
+    } else if (rule == RhoRule::Eigen) {
+      b.rho = 1.0 / lmax;
+    } else {  // paper eq. 34 (on the flexibility with the springs)
+      const double dmin = std::min(b.Wb(0, 0), b.Wb(1, 1));
+      b.rho = 1.0 / (dmin > 0 ? dmin : lmax);
+    }
+  }
+  return blocks;
+}
+
+Vec2 modified_velocity_at(const ContactProblem& pb, int i, const Vec2& ui) {
+  return modified_velocity(ui[0] - pb.ut_ref[i], pb.g0[i] + ui[1], pb.mubar[i]);
+}
+
+/// Natural-map residual of node i: |Rbar - proj(Rbar - rho s)|, in N.
+double natural_map(const ContactProblem& pb, const NodeBlock& b, int i, const Vec2& R, const Vec2& ui) {
+  if (b.fixed) return 0.0;
+  const Vec2 s = modified_velocity_at(pb, i, ui);
+  return (R - project_cone(R - b.rho * s, pb.mubar[i])).norm();
+}
+
+/// Exact solution of the linear problem that a fixed status pattern defines; returns y.
+/// Rows per node: separated Rbar = 0; stick u = (ut_ref, -g0); slide u_n = -g0 and
+/// Rbar_t = sign * mubar Rbar_n, with Rbar = y - E (W0 y + q0).
+Eigen::VectorXd solve_pattern(const ContactProblem& pb, const std::vector<NodeBlock>& blocks,
+                              const std::vector<Status>& status, const Eigen::VectorXd& Rbar) {
+  const Eigen::MatrixXd& W = *pb.W0;
+  const int m = 2 * pb.size();
+  Eigen::MatrixXd A(m, m);
+  Eigen::VectorXd rhs(m);
+  for (int i = 0; i < pb.size(); ++i) {
+    const int t = 2 * i, n = 2 * i + 1;
+    const Vec2& E = blocks[i].E;
+    // Row of Rbar_c as a function of y: e_c - E_c W0_c, constant -E_c q0_c.
+    auto rbar_row = [&](int c) -> Eigen::RowVectorXd {
+      Eigen::RowVectorXd r = -E[c - 2 * i] * W.row(c);
+      r[c] += 1.0;
+      return r;
+    };
+    if (status[i] == Status::Separated || blocks[i].fixed) {
+      A.row(t) = rbar_row(t), rhs[t] = E[0] * pb.q0[t];
+      A.row(n) = rbar_row(n), rhs[n] = E[1] * pb.q0[n];
+    } else if (status[i] == Status::Stick) {
+      A.row(t) = W.row(t), rhs[t] = pb.ut_ref[i] - pb.q0[t];
+      A.row(n) = W.row(n), rhs[n] = -pb.g0[i] - pb.q0[n];
+    } else {
+      const double sign = Rbar[t] > 0 ? 1.0 : -1.0, mb = pb.mubar[i];
+      A.row(t) = rbar_row(t) - sign * mb * rbar_row(n);
+      rhs[t] = E[0] * pb.q0[t] - sign * mb * E[1] * pb.q0[n];
+      A.row(n) = W.row(n), rhs[n] = -pb.g0[i] - pb.q0[n];
+    }
+  }
+  return A.partialPivLu().solve(rhs);
+}
+
+}  // namespace
+
+ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                         const Eigen::VectorXd& u_start) const {
+  const Eigen::MatrixXd& W = *pb.W0;
+  const int nc = pb.size(), m = 2 * nc;
+  RCCM_VERIFY(W.rows() == m && W.cols() == m && pb.q0.size() == m, "contact problem sizes");
+  const std::vector<NodeBlock> blocks = make_blocks(pb, params_.rho);
+  const Eigen::VectorXd E = pb.D1 - pb.Dbeta;
+  const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
+  const int local_max = gauss_seidel ? params_.local_iterations : 1;  // Jacobi: the paper's one step
+  const double tol = params_.tolerance;
+
+  ContactSolution s;
+  // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
+  s.Rbar = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
+  s.y = s.Rbar;
+  if (u_start.size() == m) s.y += E.cwiseProduct(u_start);
+  s.u = W * s.y + pb.q0;
+  s.status.assign(nc, Status::Separated);
+  for (int i = 0; i < nc; ++i)
+    if (blocks[i].fixed) s.Rbar.segment<2>(2 * i).setZero(), s.y.segment<2>(2 * i).setZero();
+  s.u = W * s.y + pb.q0;
+  s.Rbar = s.y - E.cwiseProduct(s.u);
+
+  std::vector<Status> previous_pattern, solved_pattern;
+  int repeats = 0;
+  for (s.iterations = 1; s.iterations <= params_.max_iterations; ++s.iterations) {
+    const Eigen::VectorXd R_old = s.Rbar;
+    const double F_old = std::max(R_old.cwiseAbs().maxCoeff(), E.cwiseProduct(s.u).cwiseAbs().maxCoeff());
+    Eigen::VectorXd y_new = s.y;
+    for (int i = 0; i < nc; ++i) {
+      const NodeBlock& b = blocks[i];
+      if (b.fixed) continue;
+      const Vec2 bi = s.u.segment<2>(2 * i) - b.Wii * s.y.segment<2>(2 * i);
+      const Vec2 c = b.M * bi;
+      Vec2 R = s.Rbar.segment<2>(2 * i);
+      Vec2 ui = b.Wb * R + c;
+      for (int k = 0; k < local_max; ++k) {
+        const Vec2 tau = R - b.rho * modified_velocity_at(pb, i, ui);  // predictor, eq. 35
+        const Vec2 R_next = project_cone(tau, pb.mubar[i]);          // corrector, eq. 36-38
+        s.status[i] = cone_branch(tau, pb.mubar[i]);
+        ++s.local_iterations;
+        const double change = (R_next - R).norm();
+        R = R_next;
+        ui = b.Wb * R + c;
+        if (change <= 0.1 * tol * std::max(R.norm(), F_old)) break;
+      }
+      const Vec2 yi = R + b.E.cwiseProduct(ui);
+      if (gauss_seidel) {  // update u at once (MODEL.md s5: far more robust)
+        const Vec2 dy = yi - s.y.segment<2>(2 * i);
+        s.u.noalias() += W.middleCols<2>(2 * i) * dy;
+        s.y.segment<2>(2 * i) = yi;
+        s.Rbar.segment<2>(2 * i) = R;
+      } else {
+        y_new.segment<2>(2 * i) = yi;
+      }
+    }
+    if (!gauss_seidel) {  // the paper's Jacobi form: global update after the sweep
+      s.y += params_.relaxation * (y_new - s.y);
+      s.u = W * s.y + pb.q0;
+    }
+    s.Rbar = s.y - E.cwiseProduct(s.u);
+
+    // Convergence: relative change of Rbar and the scaled natural-map residual.
+    const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(s.u);
+    const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
+    const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / F;
+    s.residual = 0;
+    s.worst_node = -1;
+    for (int i = 0; i < nc; ++i) {
+      const Vec2 R = s.Rbar.segment<2>(2 * i);
+      const double level = std::max(R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F);
+      const double r = natural_map(pb, blocks[i], i, R, s.u.segment<2>(2 * i)) / level;
+      if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
+    }
+    if (change <= tol && s.residual <= tol) {
+      s.converged = true;
+      break;
+    }
+
+    // Active set: once the pattern repeats, solve its linear problem exactly (then verify).
+    repeats = s.status == previous_pattern ? repeats + 1 : 0;
+    previous_pattern = s.status;
+    if (params_.active_set && repeats >= 1 && s.status != solved_pattern) {
+      s.y = solve_pattern(pb, blocks, s.status, s.Rbar);
+      s.u = W * s.y + pb.q0;
+      s.Rbar = s.y - E.cwiseProduct(s.u);
+      solved_pattern = s.status;
+      ++s.exact_solves;
+    }
+  }
+  if (!s.converged) s.iterations = params_.max_iterations;
+  return s;
+}
+
+}  // namespace rccm

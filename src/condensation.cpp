@@ -1,0 +1,43 @@
+#include "rccm/condensation.hpp"
+
+namespace rccm {
+
+Condensation::Condensation(const ElasticProblem& body, const Interface& interface,
+                           const std::vector<LoadCase>& loads)
+    : body_(body), interface_(interface) {
+  const Eigen::Index ndof = interface.P.cols(), nl = static_cast<Eigen::Index>(loads.size());
+  Eigen::MatrixXd f(ndof, nl), ud(ndof, nl);
+  for (Eigen::Index k = 0; k < nl; ++k) {
+    f.col(k) = loads[k].force;
+    ud.col(k) = loads[k].displacement;
+    amplitudes_.push_back(loads[k].amplitude);
+  }
+  U_ = body.solve(f, ud);
+  Q_ = interface.P * U_;
+
+  // W0 = P K0^-1 P^T, a block of columns at a time to bound the memory of the right-hand sides.
+  const Eigen::Index m = interface.P.rows(), block = 64;
+  const SparseMatrix Pt = interface.P.transpose();
+  W0_.resize(m, m);
+  for (Eigen::Index c = 0; c < m; c += block) {
+    const Eigen::Index nb = std::min(block, m - c);
+    const Eigen::MatrixXd rhs = Pt.middleCols(c, nb);
+    W0_.middleCols(c, nb) = interface.P * body.solve(rhs, Eigen::MatrixXd::Zero(ndof, nb));
+  }
+  W0_ = 0.5 * (W0_ + W0_.transpose());  // symmetric in exact arithmetic
+}
+
+Eigen::VectorXd Condensation::q0(double t) const {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(Q_.rows());
+  for (std::size_t k = 0; k < amplitudes_.size(); ++k) q += amplitudes_[k](t) * Q_.col(k);
+  return q;
+}
+
+Eigen::VectorXd Condensation::displacement(double t, const Eigen::VectorXd& y) const {
+  const Eigen::Index ndof = interface_.P.cols();
+  Eigen::VectorXd u = body_.solve(interface_.P.transpose() * y, Eigen::MatrixXd::Zero(ndof, 1));
+  for (std::size_t k = 0; k < amplitudes_.size(); ++k) u += amplitudes_[k](t) * U_.col(k);
+  return u;
+}
+
+}  // namespace rccm

@@ -1,0 +1,417 @@
+// Reads a libconfig file into the plain structs of config.hpp, with every range check.
+// The only file of rccm that includes libconfig.
+#include "rccm/config.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <libconfig.h++>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <initializer_list>
+#include <sstream>
+
+namespace rccm {
+
+double TimeFunction::operator()(double time) const {
+  if (t.empty()) return 0.0;
+  if (time <= t.front()) return v.front();
+  if (time >= t.back()) return v.back();
+  const auto k = static_cast<std::size_t>(std::upper_bound(t.begin(), t.end(), time) - t.begin());
+  const double s = (time - t[k - 1]) / (t[k] - t[k - 1]);
+  return v[k - 1] + s * (v[k] - v[k - 1]);
+}
+
+namespace {
+
+using libconfig::Setting;
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diag = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      const bool same = std::tolower(a[i - 1]) == std::tolower(b[j - 1]);
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diag + (same ? 0 : 1)});
+      diag = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string type_name(const Setting& s) {
+  switch (s.getType()) {
+    case Setting::TypeInt:
+    case Setting::TypeInt64: return "an integer";
+    case Setting::TypeFloat: return "a number";
+    case Setting::TypeString: return "a string";
+    case Setting::TypeBoolean: return "a boolean";
+    case Setting::TypeGroup: return "a group";
+    case Setting::TypeArray: return "an array";
+    case Setting::TypeList: return "a list";
+    default: return "nothing";
+  }
+}
+
+/// Turns libconfig settings into values, with "file:line: path: message" errors.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const Setting& s, const std::string& what) const {
+    std::ostringstream msg;
+    const std::string path = s.isRoot() ? std::string("(top level)") : s.getPath();
+    if (s.getSourceLine() == 0)
+      msg << "--set " << path << ": " << what;
+    else
+      msg << (s.getSourceFile() ? s.getSourceFile() : file_) << ":" << s.getSourceLine()
+          << ": " << path << ": " << what;
+    throw InputError(msg.str());
+  }
+
+  /// Rejects keys of a group that are not in `known`, suggesting the nearest one.
+  void only(const Setting& group, std::initializer_list<const char*> known) const {
+    for (int i = 0; i < group.getLength(); ++i) {
+      const Setting& child = group[i];
+      const std::string name = child.getName() ? child.getName() : "";
+      if (std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; }))
+        continue;
+      std::string best;
+      std::size_t best_d = 3;
+      for (const char* k : known) {
+        const std::size_t d = edit_distance(name, k);
+        if (d < best_d) best_d = d, best = k;
+      }
+      std::string allowed;
+      for (const char* k : known) allowed += std::string(allowed.empty() ? "" : ", ") + k;
+      fail(child, "unknown setting" +
+                      (best.empty() ? "; known here: " + allowed : "; did you mean '" + best + "'?"));
+    }
+  }
+
+  const Setting& group(const Setting& parent, const char* name) const {
+    if (!parent.exists(name)) fail(parent, std::string("missing section '") + name + "'");
+    const Setting& s = parent[name];
+    if (!s.isGroup()) fail(s, "must be a group { ... } (got " + type_name(s) + ")");
+    return s;
+  }
+
+  const Setting* optional_group(const Setting& parent, const char* name) const {
+    if (!parent.exists(name)) return nullptr;
+    return &group(parent, name);
+  }
+
+  double number(const Setting& s) const {
+    if (!s.isNumber()) fail(s, "must be a number (got " + type_name(s) + ")");
+    const double v = s;
+    if (!std::isfinite(v)) fail(s, "must be finite");
+    return v;
+  }
+
+  double number(const Setting& g, const char* name) const {
+    if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
+    return number(g[name]);
+  }
+
+  double number(const Setting& g, const char* name, double fallback) const {
+    return g.exists(name) ? number(g[name]) : fallback;
+  }
+
+  int integer(const Setting& g, const char* name, int fallback, bool required = false) const {
+    if (!g.exists(name)) {
+      if (required) fail(g, std::string("missing setting '") + name + "'");
+      return fallback;
+    }
+    const Setting& s = g[name];
+    if (s.getType() != Setting::TypeInt && s.getType() != Setting::TypeInt64)
+      fail(s, "must be an integer (got " + type_name(s) + ")");
+    const long long v = s;
+    if (v < -2147483647LL || v > 2147483647LL) fail(s, "integer out of range");
+    return static_cast<int>(v);
+  }
+
+  std::string text(const Setting& g, const char* name, const std::string& fallback,
+                   bool required = false) const {
+    if (!g.exists(name)) {
+      if (required) fail(g, std::string("missing setting '") + name + "'");
+      return fallback;
+    }
+    const Setting& s = g[name];
+    if (s.getType() != Setting::TypeString) fail(s, "must be a string (got " + type_name(s) + ")");
+    return s.c_str();
+  }
+
+  bool boolean(const Setting& g, const char* name, bool fallback) const {
+    if (!g.exists(name)) return fallback;
+    const Setting& s = g[name];
+    if (s.getType() != Setting::TypeBoolean) fail(s, "must be true or false (got " + type_name(s) + ")");
+    return s;
+  }
+
+  std::vector<double> numbers(const Setting& s) const {
+    if (s.isNumber()) return {number(s)};
+    if (!s.isArray() && !s.isList()) fail(s, "must be a number or an array [ ... ] of numbers");
+    std::vector<double> out;
+    for (int i = 0; i < s.getLength(); ++i) out.push_back(number(s[i]));
+    return out;
+  }
+
+  template <std::size_t N>
+  std::array<double, N> fixed(const Setting& g, const char* name) const {
+    if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
+    const Setting& s = g[name];
+    const std::vector<double> v = numbers(s);
+    if (v.size() != N || s.isNumber())
+      fail(s, "must be an array of " + std::to_string(N) + " numbers");
+    std::array<double, N> out{};
+    std::copy(v.begin(), v.end(), out.begin());
+    return out;
+  }
+
+  /// A string that must be one of `choices`; returns its index.
+  int choice(const Setting& g, const char* name, std::initializer_list<const char*> choices,
+             int fallback) const {
+    if (!g.exists(name)) return fallback;
+    const std::string v = text(g, name, "");
+    int k = 0;
+    std::string all;
+    for (const char* c : choices) {
+      if (v == c) return k;
+      all += std::string(k ? ", " : "") + "\"" + c + "\"";
+      ++k;
+    }
+    fail(g[name], "must be one of " + all + " (got \"" + v + "\")");
+  }
+
+  void check(bool ok, const Setting& s, const std::string& rule, double got) const {
+    if (ok) return;
+    std::ostringstream m;
+    m << rule << " (got " << got << ")";
+    fail(s, m.str());
+  }
+
+ private:
+  std::string file_;
+};
+
+/// Copies a parsed value (scalar, array, list or group) into `dst`'s parent under `name`.
+void copy_value(const Setting& src, Setting& parent, const std::string& name) {
+  if (parent.exists(name)) parent.remove(name);
+  const bool in_list = parent.isList() || parent.isArray();
+  Setting& dst = in_list ? parent.add(src.getType()) : parent.add(name, src.getType());
+  switch (src.getType()) {
+    case Setting::TypeInt: dst = static_cast<int>(src); break;
+    case Setting::TypeInt64: dst = static_cast<long long>(src); break;
+    case Setting::TypeFloat: dst = static_cast<double>(src); break;
+    case Setting::TypeString: dst = src.c_str(); break;
+    case Setting::TypeBoolean: dst = static_cast<bool>(src); break;
+    default:
+      for (int i = 0; i < src.getLength(); ++i)
+        copy_value(src[i], dst, src[i].getName() ? src[i].getName() : "");
+  }
+}
+
+/// Applies one "--set path=value"; the value is parsed by libconfig itself.
+void apply_override(libconfig::Config& cfg, const std::string& item) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + item + ": expected path=value, e.g. interface.alpha=0.1");
+  const std::string path = item.substr(0, eq);
+  libconfig::Config value;
+  try {
+    value.readString("v = " + item.substr(eq + 1) + ";");
+  } catch (const libconfig::ParseException& e) {
+    throw InputError("--set " + path + ": cannot parse the value '" + item.substr(eq + 1) +
+                     "' (" + e.getError() + ")");
+  }
+  Setting* parent = &cfg.getRoot();
+  std::size_t start = 0;
+  for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.', start)) {
+    const std::string part = path.substr(start, dot - start);
+    if (!parent->exists(part)) parent->add(part, Setting::TypeGroup);
+    parent = &(*parent)[part.c_str()];
+    if (!parent->isGroup()) throw InputError("--set " + path + ": '" + part + "' is not a group");
+    start = dot + 1;
+  }
+  copy_value(value.lookup("v"), *parent, path.substr(start));
+}
+
+TimeFunction read_amplitude(const Reader& r, const Setting& load, double T) {
+  const bool has_value = load.exists("value"), has_table = load.exists("table");
+  if (has_value == has_table) r.fail(load, "give exactly one of 'value' (a ramp value*t/T) or 'table'");
+  if (has_value) return {{0.0, T}, {0.0, r.number(load, "value")}};
+  const Setting& table = load["table"];
+  if (!table.isList() && !table.isArray())
+    r.fail(table, "must be a list of (t, value) pairs, e.g. ( (0.0, 0.0), (10.0, 0.3) )");
+  TimeFunction f;
+  for (int i = 0; i < table.getLength(); ++i) {
+    const std::vector<double> p = r.numbers(table[i]);
+    if (p.size() != 2) r.fail(table[i], "each entry must be a pair (t, value)");
+    if (!f.t.empty() && p[0] <= f.t.back()) r.fail(table[i], "times must increase");
+    f.t.push_back(p[0]);
+    f.v.push_back(p[1]);
+  }
+  if (f.t.empty()) r.fail(table, "must have at least one (t, value) pair");
+  return f;
+}
+
+Config read(const Reader& r, const Setting& root, const std::string& path) {
+  Config c;
+  c.file = path;
+  r.only(root, {"mesh", "material", "interface", "loads", "time", "solver", "output"});
+
+  const Setting& m = r.group(root, "mesh");
+  r.only(m, {"origin", "size", "nx", "ny", "element", "node_sets"});
+  if (m.exists("origin")) c.mesh.origin = r.fixed<2>(m, "origin");
+  c.mesh.size = r.fixed<2>(m, "size");
+  for (int k = 0; k < 2; ++k) r.check(c.mesh.size[k] > 0, m["size"], "lengths must be > 0", c.mesh.size[k]);
+  c.mesh.nx = r.integer(m, "nx", 0, true);
+  c.mesh.ny = r.integer(m, "ny", 0, true);
+  r.check(c.mesh.nx >= 1, m["nx"], "must be >= 1", c.mesh.nx);
+  r.check(c.mesh.ny >= 1, m["ny"], "must be >= 1", c.mesh.ny);
+  c.mesh.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
+  if (m.exists("node_sets")) {
+    const Setting& sets = m["node_sets"];
+    if (!sets.isList()) r.fail(sets, "must be a list ( { name = ...; box = [...]; }, ... )");
+    for (int i = 0; i < sets.getLength(); ++i) {
+      const Setting& s = sets[i];
+      if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
+      r.only(s, {"name", "box"});
+      NodeSetDef d{r.text(s, "name", "", true), r.fixed<4>(s, "box")};
+      if (d.box[0] > d.box[1] || d.box[2] > d.box[3]) r.fail(s["box"], "needs xmin <= xmax and ymin <= ymax");
+      c.mesh.node_sets.push_back(d);
+    }
+  }
+
+  const Setting& mat = r.group(root, "material");
+  r.only(mat, {"E", "nu", "hypothesis"});
+  c.material.E = r.number(mat, "E");
+  r.check(c.material.E > 0, mat["E"], "must be > 0", c.material.E);
+  c.material.nu = r.number(mat, "nu");
+  r.check(c.material.nu > -1 && c.material.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", c.material.nu);
+  c.material.hypothesis =
+      static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress"}, 0));
+
+  const Setting& in = r.group(root, "interface");
+  r.only(in, {"boundary", "normal", "Cn", "Ct", "w", "alpha", "mu", "beta0", "g0"});
+  auto& I = c.interface;
+  I.boundary = r.text(in, "boundary", "", true);
+  if (in.exists("normal")) {
+    I.normal = r.fixed<2>(in, "normal");
+    const double len = std::hypot(I.normal[0], I.normal[1]);
+    r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
+    I.normal = {I.normal[0] / len, I.normal[1] / len};
+  }
+  I.Cn = r.number(in, "Cn");
+  r.check(I.Cn > 0, in["Cn"], "must be > 0", I.Cn);
+  I.Ct = r.number(in, "Ct");
+  r.check(I.Ct > 0, in["Ct"], "must be > 0", I.Ct);
+  I.w = r.number(in, "w");
+  r.check(I.w >= 0, in["w"], "must be >= 0", I.w);
+  I.alpha = r.number(in, "alpha", I.alpha);
+  if (in.exists("alpha")) r.check(I.alpha >= 0, in["alpha"], "must be >= 0", I.alpha);
+  I.mu = r.number(in, "mu");
+  r.check(I.mu >= 0, in["mu"], "must be >= 0", I.mu);
+  if (in.exists("beta0")) {
+    I.beta0 = r.numbers(in["beta0"]);
+    if (I.beta0.empty()) r.fail(in["beta0"], "must not be empty");
+    for (double b : I.beta0) r.check(b >= 0 && b <= 1, in["beta0"], "must be in [0, 1]", b);
+  }
+  I.g0 = r.number(in, "g0", 0.0);
+  r.check(I.g0 >= 0, in.exists("g0") ? in["g0"] : in, "must be >= 0", I.g0);
+
+  const Setting& t = r.group(root, "time");
+  r.only(t, {"T", "steps"});
+  c.time.T = r.number(t, "T");
+  r.check(c.time.T > 0, t["T"], "must be > 0", c.time.T);
+  c.time.steps = r.integer(t, "steps", c.time.steps);
+  if (t.exists("steps")) r.check(c.time.steps >= 1, t["steps"], "must be >= 1", c.time.steps);
+
+  if (!root.exists("loads")) r.fail(root, "missing section 'loads'");
+  const Setting& loads = root["loads"];
+  if (!loads.isList()) r.fail(loads, "must be a list ( { node_set = ...; type = ...; ... }, ... )");
+  for (int i = 0; i < loads.getLength(); ++i) {
+    const Setting& l = loads[i];
+    if (!l.isGroup()) r.fail(l, "must be a group { node_set = ...; type = ...; component = ...; value = ...; }");
+    r.only(l, {"node_set", "type", "component", "value", "table"});
+    LoadParams p;
+    p.node_set = r.text(l, "node_set", "", true);
+    if (!l.exists("type")) r.fail(l, "missing setting 'type'");
+    p.kind = static_cast<LoadKind>(r.choice(l, "type", {"displacement", "force", "traction"}, 0));
+    if (!l.exists("component")) r.fail(l, "missing setting 'component'");
+    p.component = r.choice(l, "component", {"x", "y"}, 0);
+    p.amplitude = read_amplitude(r, l, c.time.T);
+    p.line = static_cast<int>(l.getSourceLine());
+    c.loads.push_back(p);
+  }
+
+  if (const Setting* s = r.optional_group(root, "solver")) {
+    r.only(*s, {"tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation", "active_set"});
+    auto& S = c.solver;
+    S.tolerance = r.number(*s, "tolerance", S.tolerance);
+    if (s->exists("tolerance"))
+      r.check(S.tolerance > 0 && S.tolerance < 1, (*s)["tolerance"], "must be in (0, 1)", S.tolerance);
+    S.max_iterations = r.integer(*s, "max_iterations", S.max_iterations);
+    if (s->exists("max_iterations"))
+      r.check(S.max_iterations >= 1, (*s)["max_iterations"], "must be >= 1", S.max_iterations);
+    S.local_iterations = r.integer(*s, "local_iterations", S.local_iterations);
+    if (s->exists("local_iterations"))
+      r.check(S.local_iterations >= 1, (*s)["local_iterations"], "must be >= 1", S.local_iterations);
+    S.form = static_cast<SweepForm>(r.choice(*s, "form", {"gauss-seidel", "jacobi"}, 0));
+    S.rho = static_cast<RhoRule>(r.choice(*s, "rho", {"eigen", "paper"}, 0));
+    S.relaxation = r.number(*s, "relaxation", S.relaxation);
+    if (s->exists("relaxation"))
+      r.check(S.relaxation > 0 && S.relaxation <= 1, (*s)["relaxation"], "must be in (0, 1]", S.relaxation);
+    S.active_set = r.boolean(*s, "active_set", S.active_set);
+  }
+
+  if (const Setting* o = r.optional_group(root, "output")) {
+    r.only(*o, {"directory", "times", "watch"});
+    c.output.directory = r.text(*o, "directory", c.output.directory);
+    if (c.output.directory.empty()) r.fail((*o)["directory"], "must not be empty");
+    if (o->exists("times")) {
+      c.output.times = r.numbers((*o)["times"]);
+      for (double tt : c.output.times)
+        r.check(tt >= 0 && tt <= c.time.T, (*o)["times"], "must be in [0, time.T]", tt);
+      std::sort(c.output.times.begin(), c.output.times.end());
+    }
+    if (o->exists("watch")) {
+      const Setting& ws = (*o)["watch"];
+      if (!ws.isList()) r.fail(ws, "must be a list ( { name = \"B\"; point = [x, y]; }, ... )");
+      for (int i = 0; i < ws.getLength(); ++i) {
+        if (!ws[i].isGroup()) r.fail(ws[i], "must be a group { name = ...; point = [x, y]; }");
+        r.only(ws[i], {"name", "point"});
+        c.output.watch.push_back({r.text(ws[i], "name", "", true), r.fixed<2>(ws[i], "point")});
+      }
+    }
+  }
+  return c;
+}
+
+}  // namespace
+
+Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
+  libconfig::Config cfg;
+  cfg.setAutoConvert(true);
+  try {
+    cfg.readFile(path.c_str());
+  } catch (const libconfig::FileIOException&) {
+    throw InputError(path + ": cannot read the file (does it exist?)");
+  } catch (const libconfig::ParseException& e) {
+    throw InputError(std::string(e.getFile() ? e.getFile() : path.c_str()) + ":" +
+                     std::to_string(e.getLine()) + ": syntax error: " + e.getError());
+  }
+  for (const std::string& o : overrides) apply_override(cfg, o);
+  Reader reader(path);
+  try {
+    return read(reader, cfg.getRoot(), path);
+  } catch (const libconfig::SettingException& e) {
+    throw InputError(path + ": " + e.getPath() + ": " + e.what());
+  }
+}
+
+}  // namespace rccm

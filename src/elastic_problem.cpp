@@ -1,0 +1,73 @@
+#include "rccm/elastic_problem.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace rccm {
+
+ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs,
+                               std::vector<int> prescribed)
+    : prescribed_(std::move(prescribed)), free_index_(K.rows(), -1) {
+  std::sort(prescribed_.begin(), prescribed_.end());
+  std::vector<char> is_prescribed(K.rows(), 0);
+  for (int d : prescribed_) is_prescribed[d] = 1;
+  for (int d = 0; d < K.rows(); ++d)
+    if (!is_prescribed[d]) {
+      free_index_[d] = static_cast<int>(free_.size());
+      free_.push_back(d);
+    }
+  std::vector<int> prescribed_index(K.rows(), -1);
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) prescribed_index[prescribed_[k]] = static_cast<int>(k);
+
+  const SparseMatrix K0 = K + springs;
+  std::vector<Eigen::Triplet<double>> ff, fd;
+  for (int col = 0; col < K0.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(K0, col); it; ++it) {
+      const int i = free_index_[it.row()];
+      if (i < 0) continue;
+      if (free_index_[col] >= 0)
+        ff.emplace_back(i, free_index_[col], it.value());
+      else
+        fd.emplace_back(i, prescribed_index[col], it.value());
+    }
+  const int nf = static_cast<int>(free_.size()), nd = static_cast<int>(prescribed_.size());
+  SparseMatrix K0_FF(nf, nf);
+  K0_FF.setFromTriplets(ff.begin(), ff.end());
+  K0_FD_.resize(nf, nd);
+  K0_FD_.setFromTriplets(fd.begin(), fd.end());
+
+  factor_ = std::make_unique<CholmodFactor>(K0_FF);
+  // A floating body gives a zero pivot or, in floating point, a tiny one.
+  if (!factor_->ok() || factor_->rcond() < 1e-14) {
+    std::ostringstream m;
+    m << "the structure is not restrained: its stiffness with the interface springs is singular"
+      << " (CHOLMOD rcond " << (factor_->ok() ? factor_->rcond() : 0.0)
+      << "); add a prescribed displacement on a node set or an interface that holds the body";
+    throw InputError(m.str());
+  }
+}
+
+Eigen::MatrixXd ElasticProblem::restrict_free(const Eigen::MatrixXd& full) const {
+  Eigen::MatrixXd out(free_.size(), full.cols());
+  for (std::size_t i = 0; i < free_.size(); ++i) out.row(i) = full.row(free_[i]);
+  return out;
+}
+
+Eigen::MatrixXd ElasticProblem::extend_free(const Eigen::MatrixXd& free) const {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(free_index_.size(), free.cols());
+  for (std::size_t i = 0; i < free_.size(); ++i) out.row(free_[i]) = free.row(i);
+  return out;
+}
+
+Eigen::MatrixXd ElasticProblem::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& u_prescribed) const {
+  Eigen::MatrixXd uD(prescribed_.size(), u_prescribed.cols());
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) uD.row(k) = u_prescribed.row(prescribed_[k]);
+  const Eigen::MatrixXd rhs = restrict_free(f) - K0_FD_ * uD;
+  Eigen::MatrixXd u = extend_free(factor_->solve(rhs));
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) u.row(prescribed_[k]) = uD.row(k);
+  return u;
+}
+
+}  // namespace rccm

@@ -1,0 +1,55 @@
+#include "rccm/interface_state.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <sstream>
+
+namespace rccm {
+
+InterfaceState InterfaceState::initial(const Model& model) {
+  InterfaceState s;
+  const int m = 2 * model.contact_nodes();
+  s.beta = model.initial_beta();
+  s.Rbar = Eigen::VectorXd::Zero(m);
+  s.u = Eigen::VectorXd::Zero(m);
+  s.y = Eigen::VectorXd::Zero(m);
+  s.status.assign(model.contact_nodes(), Status::Separated);
+  return s;
+}
+
+Eigen::VectorXd InterfaceState::ut() const {
+  return Eigen::Map<const Eigen::VectorXd, 0, Eigen::InnerStride<2>>(u.data(), u.size() / 2);
+}
+
+void InterfaceState::commit(double time, const Eigen::VectorXd& new_beta, const ContactSolution& s) {
+  t = time;
+  beta = new_beta;
+  Rbar = s.Rbar;
+  u = s.u;
+  y = s.y;
+  status = s.status;
+}
+
+ContactSolution solve_contact(const Model& model, const BipotentialSolver& solver, double t,
+                              const Eigen::VectorXd& beta, const InterfaceState& committed) {
+  const ContactProblem pb = model.contact_problem(t, beta, committed.ut());
+  ContactSolution s;
+  try {
+    s = solver.solve(pb, committed.Rbar, committed.u);
+  } catch (const SolveError& e) {
+    std::ostringstream m;
+    m << "t = " << t << " s: " << e.what();
+    throw SolveError(m.str());
+  }
+  if (!s.converged) {
+    std::ostringstream m;
+    m << "t = " << t << " s: the contact solve did not converge in " << solver.params().max_iterations
+      << " sweeps (scaled residual " << s.residual << " at contact node " << s.worst_node
+      << "); raise solver.max_iterations, loosen solver.tolerance ("
+      << solver.params().tolerance << ") or take smaller steps";
+    throw SolveError(m.str());
+  }
+  return s;
+}
+
+}  // namespace rccm

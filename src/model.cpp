@@ -1,0 +1,72 @@
+#include "rccm/model.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+std::vector<int> find_watched(const Config& cfg, const Mesh& mesh, const Interface& I) {
+  std::vector<int> out;
+  const double reach = 1e-6 * std::max(cfg.mesh.size[0], cfg.mesh.size[1]) + I.a.maxCoeff();
+  for (const WatchPoint& w : cfg.output.watch) {
+    const Eigen::Vector2d p(w.point[0], w.point[1]);
+    int best = 0;
+    for (int i = 1; i < I.size(); ++i)
+      if ((mesh.nodes[I.nodes[i]] - p).norm() < (mesh.nodes[I.nodes[best]] - p).norm()) best = i;
+    const double d = (mesh.nodes[I.nodes[best]] - p).norm();
+    if (d > reach) {
+      std::ostringstream m;
+      m << cfg.file << ": output.watch '" << w.name << "': point (" << p.x() << ", " << p.y()
+        << ") is " << d << " mm from the nearest contact node; give a point on the interface";
+      throw InputError(m.str());
+    }
+    out.push_back(best);
+  }
+  return out;
+}
+
+}  // namespace
+
+Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
+  try {
+    interface_ = make_interface(mesh_, cfg.interface);
+  } catch (const InputError& e) {
+    throw InputError(cfg.file + ": interface.boundary: " + e.what());
+  }
+  if (cfg.interface.beta0.size() != 1 && static_cast<int>(cfg.interface.beta0.size()) != interface_.size())
+    throw InputError(cfg.file + ": interface.beta0: give one value or one per contact node (" +
+                     std::to_string(interface_.size()) + "), got " + std::to_string(cfg.interface.beta0.size()));
+  loads_ = make_load_cases(mesh_, cfg);
+  body_ = std::make_unique<ElasticProblem>(assemble_stiffness(mesh_, cfg.material),
+                                           interface_.initial_springs(), prescribed_dofs(loads_));
+  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_);
+  D1_.resize(2 * interface_.size());
+  for (int i = 0; i < interface_.size(); ++i)
+    D1_.segment<2>(2 * i) << interface_.a[i] * interface_.Ct, interface_.a[i] * interface_.Cn;
+  watched_ = find_watched(cfg, mesh_, interface_);
+}
+
+Eigen::VectorXd Model::initial_beta() const {
+  const auto& b0 = cfg_.interface.beta0;
+  if (b0.size() == 1) return Eigen::VectorXd::Constant(interface_.size(), b0[0]);
+  return Eigen::Map<const Eigen::VectorXd>(b0.data(), static_cast<Eigen::Index>(b0.size()));
+}
+
+ContactProblem Model::contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& ut_ref) const {
+  ContactProblem pb;
+  pb.W0 = &condensation_->W0();
+  pb.q0 = condensation_->q0(t);
+  pb.D1 = D1_;
+  pb.Dbeta.resize(D1_.size());
+  for (int i = 0; i < interface_.size(); ++i)
+    pb.Dbeta.segment<2>(2 * i) = beta[i] * beta[i] * D1_.segment<2>(2 * i);  // MODEL.md s4, D(beta)
+  pb.mubar = cfg_.interface.mu * (1.0 - beta.array());                     // paper eq. 20
+  pb.g0 = Eigen::VectorXd::Constant(interface_.size(), cfg_.interface.g0);
+  pb.ut_ref = ut_ref;
+  return pb;
+}
+
+}  // namespace rccm
