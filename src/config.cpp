@@ -65,7 +65,9 @@ class Reader {
   [[noreturn]] void fail(const Setting& s, const std::string& what) const {
     std::ostringstream msg;
     const std::string path = s.isRoot() ? std::string("(top level)") : s.getPath();
-    if (s.getSourceLine() == 0)
+    if (s.isRoot())
+      msg << file_ << ": " << path << ": " << what;
+    else if (s.getSourceLine() == 0)
       msg << "--set " << path << ": " << what;
     else
       msg << (s.getSourceFile() ? s.getSourceFile() : file_) << ":" << s.getSourceLine()
@@ -73,23 +75,25 @@ class Reader {
     throw InputError(msg.str());
   }
 
-  /// Rejects keys of a group that are not in `known`, suggesting the nearest one.
+  /// Fails on `s` unless `name` is one of `known`, suggesting the nearest one.
+  template <class Names>
+  void one_of(const Setting& s, const std::string& name, const Names& known, const std::string& what) const {
+    std::string best, allowed;
+    std::size_t best_d = 3;
+    for (const auto& k : known) {
+      if (name == k) return;
+      const std::size_t d = edit_distance(name, k);
+      if (d < best_d) best_d = d, best = k;
+      allowed += (allowed.empty() ? "" : ", ") + std::string(k);
+    }
+    fail(s, what + (best.empty() ? "; known here: " + allowed : "; did you mean '" + best + "'?"));
+  }
+
+  /// Rejects keys of a group that are not in `known`.
   void only(const Setting& group, std::initializer_list<const char*> known) const {
     for (int i = 0; i < group.getLength(); ++i) {
       const Setting& child = group[i];
-      const std::string name = child.getName() ? child.getName() : "";
-      if (std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; }))
-        continue;
-      std::string best;
-      std::size_t best_d = 3;
-      for (const char* k : known) {
-        const std::size_t d = edit_distance(name, k);
-        if (d < best_d) best_d = d, best = k;
-      }
-      std::string allowed;
-      for (const char* k : known) allowed += std::string(allowed.empty() ? "" : ", ") + k;
-      fail(child, "unknown setting" +
-                      (best.empty() ? "; known here: " + allowed : "; did you mean '" + best + "'?"));
+      one_of(child, child.getName() ? child.getName() : "", known, "unknown setting");
     }
   }
 
@@ -286,6 +290,18 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
       c.mesh.node_sets.push_back(d);
     }
   }
+  // Names of the node sets the mesh will have (make_rectangle), to check references early.
+  std::vector<std::string> set_names = {"left", "right", "bottom", "top", "bottom_left", "bottom_right",
+                                        "top_left", "top_right", "all"};
+  for (const NodeSetDef& d : c.mesh.node_sets) set_names.push_back(d.name);
+  auto node_set_name = [&](const Setting& g) {
+    const std::string name = g.exists("node_set") || g.exists("boundary")
+                                 ? r.text(g, g.exists("node_set") ? "node_set" : "boundary", "")
+                                 : "";
+    const Setting& s = g[g.exists("node_set") ? "node_set" : "boundary"];
+    r.one_of(s, name, set_names, "no node set named '" + name + "'");
+    return name;
+  };
 
   const Setting& mat = r.group(root, "material");
   r.only(mat, {"E", "nu", "hypothesis"});
@@ -299,7 +315,8 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   const Setting& in = r.group(root, "interface");
   r.only(in, {"boundary", "normal", "Cn", "Ct", "w", "alpha", "mu", "beta0", "g0"});
   auto& I = c.interface;
-  I.boundary = r.text(in, "boundary", "", true);
+  r.text(in, "boundary", "", true);
+  I.boundary = node_set_name(in);
   if (in.exists("normal")) {
     I.normal = r.fixed<2>(in, "normal");
     const double len = std::hypot(I.normal[0], I.normal[1]);
@@ -339,7 +356,8 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
     if (!l.isGroup()) r.fail(l, "must be a group { node_set = ...; type = ...; component = ...; value = ...; }");
     r.only(l, {"node_set", "type", "component", "value", "table"});
     LoadParams p;
-    p.node_set = r.text(l, "node_set", "", true);
+    r.text(l, "node_set", "", true);
+    p.node_set = node_set_name(l);
     if (!l.exists("type")) r.fail(l, "missing setting 'type'");
     p.kind = static_cast<LoadKind>(r.choice(l, "type", {"displacement", "force", "traction"}, 0));
     if (!l.exists("component")) r.fail(l, "missing setting 'component'");
