@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace rccm {
@@ -71,11 +72,13 @@ double natural_map(const ContactProblem& pb, const NodeBlock& b, int i, const Ve
   return (R - project_cone(R - b.rho * s, pb.mubar[i])).norm();
 }
 
-/// Exact solution of the linear problem that a fixed status pattern defines; returns y.
+/// Exact solution of the linear problem that a fixed status pattern defines, as a
+/// correction of the current y (so that a repeated solve refines an ill-conditioned one).
 /// Rows per node: separated Rbar = 0; stick u = (ut_ref, -g0); slide u_n = -g0 and
 /// Rbar_t = sign * mubar Rbar_n, with Rbar = y - E (W0 y + q0).
 Eigen::VectorXd solve_pattern(const ContactProblem& pb, const std::vector<NodeBlock>& blocks,
-                              const std::vector<Status>& status, const Eigen::VectorXd& Rbar) {
+                              const std::vector<Status>& status, const Eigen::VectorXd& Rbar,
+                              const Eigen::VectorXd& y) {
   const Eigen::MatrixXd& W = *pb.W0;
   const int m = 2 * pb.size();
   Eigen::MatrixXd A(m, m);
@@ -102,7 +105,7 @@ Eigen::VectorXd solve_pattern(const ContactProblem& pb, const std::vector<NodeBl
       A.row(n) = W.row(n), rhs[n] = -pb.g0[i] - pb.q0[n];
     }
   }
-  return A.partialPivLu().solve(rhs);
+  return y + A.partialPivLu().solve(rhs - A * y);
 }
 
 }  // namespace
@@ -130,11 +133,17 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   s.u = W * s.y + pb.q0;
   s.Rbar = s.y - E.cwiseProduct(s.u);
 
+  // Rbar = y - E u cancels where beta -> 0 and the initial spring force E u is large: the
+  // attainable absolute accuracy of Rbar is about eps |y| (a floor for both criteria).
+  const auto noise_floor = [&]() { return 1e3 * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff(); };
+
   std::vector<Status> previous_pattern, solved_pattern;
-  int repeats = 0;
+  int repeats = 0, since_exact = 0;
+  const int max_exact_solves = 10;
   for (s.iterations = 1; s.iterations <= params_.max_iterations; ++s.iterations) {
     const Eigen::VectorXd R_old = s.Rbar;
-    const double F_old = std::max(R_old.cwiseAbs().maxCoeff(), E.cwiseProduct(s.u).cwiseAbs().maxCoeff());
+    const double noise = noise_floor();
+    const double F_old = std::max(R_old.cwiseAbs().maxCoeff(), pb.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
     Eigen::VectorXd y_new = s.y;
     for (int i = 0; i < nc; ++i) {
       const NodeBlock& b = blocks[i];
@@ -151,7 +160,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
         const double change = (R_next - R).norm();
         R = R_next;
         ui = b.Wb * R + c;
-        if (change <= 0.1 * tol * std::max(R.norm(), F_old)) break;
+        if (change <= 0.1 * tol * std::max(R.norm(), F_old) + noise) break;
       }
       const Vec2 yi = R + b.E.cwiseProduct(ui);
       if (gauss_seidel) {  // update u at once (MODEL.md s5: far more robust)
@@ -163,21 +172,23 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
         y_new.segment<2>(2 * i) = yi;
       }
     }
-    if (!gauss_seidel) {  // the paper's Jacobi form: global update after the sweep
+    if (!gauss_seidel)  // the paper's Jacobi form: global update after the sweep
       s.y += params_.relaxation * (y_new - s.y);
-      s.u = W * s.y + pb.q0;
-    }
+    // Fresh u (Gauss-Seidel: drops the round-off its incremental updates accumulate).
+    s.u.noalias() = W * s.y;
+    s.u += pb.q0;
     s.Rbar = s.y - E.cwiseProduct(s.u);
 
     // Convergence: relative change of Rbar and the scaled natural-map residual.
     const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(s.u);
     const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
-    const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / F;
+    const double floor = noise_floor() / tol;
+    const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / std::max(F, floor);
     s.residual = 0;
     s.worst_node = -1;
     for (int i = 0; i < nc; ++i) {
       const Vec2 R = s.Rbar.segment<2>(2 * i);
-      const double level = std::max(R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F);
+      const double level = std::max({R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F, floor});
       const double r = natural_map(pb, blocks[i], i, R, s.u.segment<2>(2 * i)) / level;
       if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
     }
@@ -186,11 +197,15 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
       break;
     }
 
-    // Active set: once the pattern repeats, solve its linear problem exactly (then verify).
+    // Active set: once the pattern repeats, solve its linear problem exactly (then verify);
+    // if the same pattern persists unconverged, refine that solve.
     repeats = s.status == previous_pattern ? repeats + 1 : 0;
     previous_pattern = s.status;
-    if (params_.active_set && repeats >= 1 && s.status != solved_pattern) {
-      s.y = solve_pattern(pb, blocks, s.status, s.Rbar);
+    ++since_exact;
+    if (params_.active_set && repeats >= 1 && (s.status != solved_pattern || since_exact >= 3) &&
+        s.exact_solves < max_exact_solves) {
+      s.y = solve_pattern(pb, blocks, s.status, s.Rbar, s.y);
+      since_exact = 0;
       s.u = W * s.y + pb.q0;
       s.Rbar = s.y - E.cwiseProduct(s.u);
       solved_pattern = s.status;

@@ -14,6 +14,15 @@
 
 namespace rccm {
 
+const char* method_name(Method m) {
+  switch (m) {
+    case Method::Arkode: return "arkode";
+    case Method::Euler: return "euler";
+    case Method::RateIndependent: return "rate-independent";
+    default: return "fixed";
+  }
+}
+
 double TimeFunction::operator()(double time) const {
   if (t.empty()) return 0.0;
   if (time <= t.front()) return v.front();
@@ -225,9 +234,17 @@ void apply_override(libconfig::Config& cfg, const std::string& item) {
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + item + ": expected path=value, e.g. interface.alpha=0.1");
   const std::string path = item.substr(0, eq);
+  std::string text = item.substr(eq + 1);
+  // A bare word (solver.form=jacobi) is a string: the shell has eaten the quotes.
+  const bool bare_word = !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
+                         std::all_of(text.begin(), text.end(), [](unsigned char ch) {
+                           return std::isalnum(ch) || ch == '-' || ch == '_';
+                         }) &&
+                         text != "true" && text != "false";
+  if (bare_word) text = "\"" + text + "\"";
   libconfig::Config value;
   try {
-    value.readString("v = " + item.substr(eq + 1) + ";");
+    value.readString("v = " + text + ";");
   } catch (const libconfig::ParseException& e) {
     throw InputError("--set " + path + ": cannot parse the value '" + item.substr(eq + 1) +
                      "' (" + e.getError() + ")");
@@ -266,7 +283,7 @@ TimeFunction read_amplitude(const Reader& r, const Setting& load, double T) {
 Config read(const Reader& r, const Setting& root, const std::string& path) {
   Config c;
   c.file = path;
-  r.only(root, {"mesh", "material", "interface", "loads", "time", "solver", "output"});
+  r.only(root, {"mesh", "material", "interface", "loads", "time", "solver", "integrator", "output"});
 
   const Setting& m = r.group(root, "mesh");
   r.only(m, {"origin", "size", "nx", "ny", "element", "node_sets"});
@@ -386,6 +403,36 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
       r.check(S.relaxation > 0 && S.relaxation <= 1, (*s)["relaxation"], "must be in (0, 1]", S.relaxation);
     S.active_set = r.boolean(*s, "active_set", S.active_set);
   }
+
+  if (const Setting* g = r.optional_group(root, "integrator")) {
+    r.only(*g, {"method", "scheme", "table", "rtol", "atol", "max_step", "initial_step", "max_steps",
+                "fixed_point_tolerance", "fixed_point_iterations"});
+    auto& A = c.integrator;
+    A.method = static_cast<Method>(r.choice(*g, "method", {"arkode", "euler", "rate-independent", "fixed"}, 0));
+    A.scheme = static_cast<ArkodeScheme>(r.choice(*g, "scheme", {"dirk", "erk"}, 0));
+    A.table = r.text(*g, "table", "");
+    auto positive = [&](const char* key, double& v, double lo) {
+      v = r.number(*g, key, v);
+      if (g->exists(key)) r.check(v > lo, (*g)[key], lo == 0 ? "must be > 0" : "must be >= 0", v);
+    };
+    positive("rtol", A.rtol, 0);
+    positive("atol", A.atol, 0);
+    A.max_step = r.number(*g, "max_step", A.max_step);
+    if (g->exists("max_step")) r.check(A.max_step >= 0, (*g)["max_step"], "must be >= 0", A.max_step);
+    A.initial_step = r.number(*g, "initial_step", A.initial_step);
+    if (g->exists("initial_step")) r.check(A.initial_step >= 0, (*g)["initial_step"], "must be >= 0", A.initial_step);
+    A.max_steps = r.integer(*g, "max_steps", A.max_steps);
+    if (g->exists("max_steps")) r.check(A.max_steps >= 1, (*g)["max_steps"], "must be >= 1", A.max_steps);
+    positive("fixed_point_tolerance", A.fixed_point_tolerance, 0);
+    A.fixed_point_iterations = r.integer(*g, "fixed_point_iterations", A.fixed_point_iterations);
+    if (g->exists("fixed_point_iterations"))
+      r.check(A.fixed_point_iterations >= 1, (*g)["fixed_point_iterations"], "must be >= 1", A.fixed_point_iterations);
+  }
+  const bool viscous = c.integrator.method == Method::Arkode || c.integrator.method == Method::Euler;
+  if (viscous && !(c.interface.alpha > 0))
+    r.fail(in.exists("alpha") ? in["alpha"] : in,
+           std::string("must be > 0 for integrator.method = \"") + method_name(c.integrator.method) +
+               "\" (got " + std::to_string(c.interface.alpha) + "); alpha = 0 is method \"rate-independent\"");
 
   if (const Setting* o = r.optional_group(root, "output")) {
     r.only(*o, {"directory", "times", "watch"});

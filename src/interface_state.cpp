@@ -43,10 +43,18 @@ ContactSolution solve_contact(const Model& model, const BipotentialSolver& solve
   }
   if (!s.converged) {
     std::ostringstream m;
+    const long debonded = (beta.array() <= 0.0).count();
     m << "t = " << t << " s: the contact solve did not converge in " << solver.params().max_iterations
-      << " sweeps (scaled residual " << s.residual << " at contact node " << s.worst_node
-      << "); raise solver.max_iterations, loosen solver.tolerance ("
-      << solver.params().tolerance << ") or take smaller steps";
+      << " sweeps (scaled residual " << s.residual << " at contact node " << s.worst_node << "; " << debonded
+      << " of " << beta.size() << " contact nodes have beta = 0";
+    if (2 * debonded > beta.size()) m << ": the body may no longer be held";
+    m << "); ";
+    if (solver.params().form == SweepForm::Jacobi)
+      m << "the Jacobi form diverges on strongly coupled interfaces: use solver.form = \"gauss-seidel\" "
+        << "or under-relax it (solver.relaxation = 0.2 works on B2)";
+    else
+      m << "raise solver.max_iterations, loosen solver.tolerance (" << solver.params().tolerance
+        << ") or take smaller steps";
     throw SolveError(m.str());
   }
   return s;

@@ -1,5 +1,6 @@
 // rccm: quasi-static FE contact with the RCCM interface law, solved by the bipotential method.
 // Exit status: 0 success, 2 bad input (nothing written), 3 a solve that failed, 1 anything else.
+#include "rccm/compare.hpp"
 #include "rccm/config.hpp"
 #include "rccm/errors.hpp"
 #include "rccm/simulation.hpp"
@@ -9,17 +10,36 @@
 #include <cstdio>
 #include <iostream>
 
+namespace {
+
+void print_totals(const rccm::RunResult& r) {
+  std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d), %.3f s\n",
+              r.integrator.steps, r.integrator.rejected, r.solves.contact_solves,
+              double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves), r.solves.max_sweeps, r.wall_seconds);
+  for (const std::string& w : r.warnings) std::cerr << "rccm: warning: " << w << "\n";
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"rccm: RCCM interface (contact, Coulomb friction, adhesion) by the bipotential method"};
   app.require_subcommand(1);
   std::string config_file;
-  std::vector<std::string> overrides;
+  std::vector<std::string> overrides, integrators{"arkode", "euler"};
   bool quiet = false;
+  int euler_steps = 0;
 
   CLI::App* run = app.add_subcommand("run", "run the problem of a config file");
-  run->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
-  run->add_option("--set", overrides, "override a setting: path=value (repeatable)");
+  CLI::App* compare = app.add_subcommand("compare", "run one problem with several integrators, side by side");
+  for (CLI::App* sub : {run, compare}) {
+    sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
+    sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
+  }
   run->add_flag("--quiet,-q", quiet, "no per-step output");
+  compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, fixed")
+      ->delimiter(',');
+  compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
+      ->check(CLI::PositiveNumber);
 
   try {
     app.parse(argc, argv);
@@ -29,10 +49,13 @@ int main(int argc, char** argv) {
 
   try {
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
-    rccm::Simulation sim(cfg, quiet ? nullptr : &std::cout);
-    const rccm::RunTotals t = sim.run();
-    std::printf("# %d steps, %ld contact solves, %.2f sweeps per solve (max %d), %.3f s\n", t.steps,
-                t.contact_solves, double(t.sweeps) / std::max(1L, t.contact_solves), t.max_sweeps, t.wall_seconds);
+    if (*run) {
+      rccm::Simulation sim(cfg, quiet ? nullptr : &std::cout);
+      print_totals(sim.run());
+    } else {
+      std::cout << "# " << config_file << "\n";
+      rccm::print_comparison(std::cout, rccm::run_comparison(cfg, integrators, euler_steps));
+    }
     return 0;
   } catch (const rccm::InputError& e) {
     std::cerr << "rccm: error: " << e.what() << "\n";

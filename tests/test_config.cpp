@@ -53,9 +53,10 @@ TEST_CASE("integers convert to numbers and tables are piecewise linear", "[confi
 }
 
 TEST_CASE("overrides (--set) change any setting, and their errors name them", "[config]") {
-  const Config c = test::config_from_text(good, {"interface.mu=0.5", "solver.form=\"jacobi\"", "output.times=[0.5, 0.25]"});
+  const Config c = test::config_from_text(good, {"interface.mu=0.5", "solver.form=jacobi", "output.times=[0.5, 0.25]"});
   CHECK(c.interface.mu == 0.5);
-  CHECK(c.solver.form == SweepForm::Jacobi);
+  CHECK(c.solver.form == SweepForm::Jacobi);  // a bare word is a string
+  CHECK(test::config_from_text(good, {"solver.rho=\"paper\""}).solver.rho == RhoRule::Paper);
   REQUIRE(c.output.times.size() == 2);
   CHECK(c.output.times[0] == 0.25);
   CHECK_THROWS_WITH(test::config_from_text(good, {"interface.mu=-1"}),

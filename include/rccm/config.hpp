@@ -83,6 +83,22 @@ struct SolverParams {
   bool active_set = true;        // exact solve once the status pattern repeats
 };
 
+enum class Method { Arkode, Euler, RateIndependent, Fixed };
+enum class ArkodeScheme { Dirk, Erk };
+
+/// Time integration of beta (MODEL.md s6).
+struct IntegratorParams {
+  Method method = Method::Arkode;
+  ArkodeScheme scheme = ArkodeScheme::Dirk;  // arkode: implicit DIRK (robust as alpha -> 0) or ERK
+  std::string table;                          // arkode Butcher table name; empty: the scheme's default
+  double rtol = 1e-6, atol = 1e-10;           // arkode tolerances (beta is dimensionless)
+  double max_step = 0.0;                      // s; 0: T / 50
+  double initial_step = 0.0;                  // s; 0: ARKODE's estimate
+  int max_steps = 200000;                     // accepted steps per output interval
+  double fixed_point_tolerance = 1e-10;       // rate-independent: change of beta
+  int fixed_point_iterations = 500;
+};
+
 struct WatchPoint {
   std::string name;
   std::array<double, 2> point{};  // mm; the nearest contact node is watched
@@ -102,8 +118,11 @@ struct Config {
   std::vector<LoadParams> loads;
   TimeParams time;
   SolverParams solver;
+  IntegratorParams integrator;
   OutputParams output;
 };
+
+const char* method_name(Method m);
 
 /// Reads and checks a config file; `overrides` are "path=value" strings (the
 /// command line's --set). Throws InputError "file:line: setting: what is wrong".

@@ -1,0 +1,27 @@
+// beta integrated by SUNDIALS ARKODE (ARKStep), adaptive (MODEL.md s6). Every stage
+// evaluates f(t, beta) by a bipotential contact solve; after each accepted step the contact
+// state is recomputed and committed (ARKStepSetPostprocessStepFn). Implicit DIRK (default:
+// the ODE is stiff, its rate (Cn u_n^2 + Ct u_t^2)/alpha grows without bound as alpha -> 0)
+// with modified Newton on the diagonal Jacobian, solved by KLU; or explicit ERK.
+// A contact solve that fails inside a stage is a recoverable RHS failure: ARKODE cuts the step.
+#pragma once
+
+#include "rccm/adhesion_integrator.hpp"
+
+#include <memory>
+
+namespace rccm {
+
+class ArkodeIntegrator final : public AdhesionIntegrator {
+ public:
+  ArkodeIntegrator(BetaOde& ode, const Config& cfg);
+  ~ArkodeIntegrator() override;
+  void advance(double t_out) override;
+  IntegratorStats stats() const override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rccm

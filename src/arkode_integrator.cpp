@@ -1,0 +1,171 @@
+#include "rccm/arkode_integrator.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <arkode/arkode_arkstep.h>
+#include <nvector/nvector_serial.h>
+#include <sundials/sundials_context.h>
+#include <sunlinsol/sunlinsol_klu.h>
+#include <sunmatrix/sunmatrix_sparse.h>
+
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+/// Every SUNDIALS call's flag is checked with the function's name (SUNDIALS examples' style).
+void check(int flag, const char* function) {
+  if (flag < 0) throw InternalError(std::string(function) + " failed with flag " + std::to_string(flag));
+}
+
+template <class T>
+T* check_ptr(T* p, const char* function) {
+  if (!p) throw InternalError(std::string(function) + " returned NULL");
+  return p;
+}
+
+Eigen::Map<Eigen::VectorXd> as_eigen(N_Vector v) {
+  return {N_VGetArrayPointer(v), N_VGetLength(v)};
+}
+
+}  // namespace
+
+struct ArkodeIntegrator::Impl {
+  BetaOde& ode;
+  SUNContext ctx = nullptr;
+  N_Vector y = nullptr, constraints = nullptr;
+  SUNMatrix J = nullptr;
+  SUNLinearSolver LS = nullptr;
+  void* mem = nullptr;
+  std::string contact_failure;  // the last contact solve that failed, for the final message
+  std::string arkode_message;   // ARKODE's own last error message
+
+  Impl(BetaOde& o, const Config& cfg) : ode(o) {
+    const IntegratorParams& p = cfg.integrator;
+    const sunindextype n = ode.size();
+    check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
+    y = check_ptr(N_VNew_Serial(n, ctx), "N_VNew_Serial");
+    as_eigen(y) = ode.committed().beta;
+    const bool implicit = p.scheme == ArkodeScheme::Dirk;
+    mem = check_ptr(ARKStepCreate(implicit ? nullptr : rhs, implicit ? rhs : nullptr, ode.committed().t, y, ctx),
+                    "ARKStepCreate");
+    check(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
+    check(ARKStepSetErrHandlerFn(mem, error_handler, this), "ARKStepSetErrHandlerFn");
+    check(ARKStepSStolerances(mem, p.rtol, p.atol), "ARKStepSStolerances");
+    check(ARKStepSetMaxStep(mem, p.max_step > 0 ? p.max_step : cfg.time.T / 50), "ARKStepSetMaxStep");
+    if (p.initial_step > 0) check(ARKStepSetInitStep(mem, p.initial_step), "ARKStepSetInitStep");
+    check(ARKStepSetMaxNumSteps(mem, p.max_steps), "ARKStepSetMaxNumSteps");
+    check(ARKStepSetPostprocessStepFn(mem, accepted), "ARKStepSetPostprocessStepFn");
+    // beta >= 0: ARKODE rejects and cuts a step that would make it negative.
+    constraints = check_ptr(N_VNew_Serial(n, ctx), "N_VNew_Serial");
+    N_VConst(1.0, constraints);
+    check(ARKStepSetConstraints(mem, constraints), "ARKStepSetConstraints");
+    if (!p.table.empty())
+      check(ARKStepSetTableName(mem, implicit ? p.table.c_str() : "ARKODE_DIRK_NONE",
+                                implicit ? "ARKODE_ERK_NONE" : p.table.c_str()),
+            "ARKStepSetTableName");
+    if (implicit) {
+      J = check_ptr(SUNSparseMatrix(n, n, n, CSC_MAT, ctx), "SUNSparseMatrix");
+      LS = check_ptr(SUNLinSol_KLU(y, J, ctx), "SUNLinSol_KLU");
+      check(ARKStepSetLinearSolver(mem, LS, J), "ARKStepSetLinearSolver");
+      check(ARKStepSetJacFn(mem, jacobian), "ARKStepSetJacFn");
+      // A fresh Jacobian every step: the active set of the max(0, .) changes (BUILD-FACTS.md).
+      check(ARKStepSetLSetupFrequency(mem, 1), "ARKStepSetLSetupFrequency");
+    }
+  }
+
+  ~Impl() {
+    ARKStepFree(&mem);
+    if (LS) SUNLinSolFree(LS);
+    if (J) SUNMatDestroy(J);
+    N_VDestroy(constraints);
+    N_VDestroy(y);
+    SUNContext_Free(&ctx);
+  }
+
+  static int rhs(realtype t, N_Vector beta, N_Vector f, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      self->ode.rhs(t, as_eigen(beta), as_eigen(f));
+      return 0;
+    } catch (const SolveError& e) {
+      self->contact_failure = e.what();
+      return 1;  // recoverable: ARKODE retries with a smaller step
+    }
+  }
+
+  static int jacobian(realtype t, N_Vector beta, N_Vector, SUNMatrix J, void* data, N_Vector, N_Vector, N_Vector) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      const Eigen::VectorXd d = self->ode.jacobian_diagonal(t, as_eigen(beta));
+      sunindextype* col = SUNSparseMatrix_IndexPointers(J);
+      sunindextype* row = SUNSparseMatrix_IndexValues(J);
+      realtype* value = SUNSparseMatrix_Data(J);
+      for (sunindextype i = 0; i < d.size(); ++i) col[i] = row[i] = i, value[i] = d[i];
+      col[d.size()] = d.size();
+      return 0;
+    } catch (const SolveError& e) {
+      self->contact_failure = e.what();
+      return 1;
+    }
+  }
+
+  static int accepted(realtype t, N_Vector beta, void* data) {
+    auto* self = static_cast<Impl*>(data);
+    try {
+      self->ode.accept(t, as_eigen(beta));
+      return 0;
+    } catch (const SolveError& e) {
+      self->contact_failure = e.what();
+      return -1;
+    }
+  }
+
+  static void error_handler(int, const char* module, const char* function, char* msg, void* data) {
+    static_cast<Impl*>(data)->arkode_message = std::string(module) + "::" + function + ": " + msg;
+  }
+
+  long counter(int (*get)(void*, long*)) const {
+    long v = 0;
+    get(mem, &v);
+    return v;
+  }
+};
+
+ArkodeIntegrator::ArkodeIntegrator(BetaOde& ode, const Config& cfg) : impl_(std::make_unique<Impl>(ode, cfg)) {}
+
+ArkodeIntegrator::~ArkodeIntegrator() = default;
+
+void ArkodeIntegrator::advance(double t_out) {
+  Impl& m = *impl_;
+  check(ARKStepSetStopTime(m.mem, t_out), "ARKStepSetStopTime");
+  realtype t = m.ode.committed().t;
+  const int flag = ARKStepEvolve(m.mem, t_out, m.y, &t, ARK_NORMAL);
+  if (flag >= 0) return;
+
+  std::ostringstream msg;
+  msg << "ARKODE stopped at t = " << m.ode.committed().t << " s after step " << m.ode.steps() << " ("
+      << ARKStepGetReturnFlagName(flag) << ")";
+  if (!m.arkode_message.empty()) msg << ": " << m.arkode_message;
+  if (!m.contact_failure.empty()) msg << "\n  last contact failure: " << m.contact_failure;
+  if (flag == ARK_TOO_MUCH_WORK)
+    msg << "\n  raise integrator.max_steps, or use scheme = \"dirk\" (an explicit scheme on this stiff ODE needs tiny steps)";
+  else
+    msg << "\n  loosen integrator.rtol/atol, lower integrator.max_step, or see the contact failure above";
+  throw SolveError(msg.str());
+}
+
+IntegratorStats ArkodeIntegrator::stats() const {
+  const Impl& m = *impl_;
+  IntegratorStats s;
+  s.steps = m.counter(ARKStepGetNumSteps);
+  s.rejected = m.counter(ARKStepGetNumErrTestFails) + m.counter(ARKStepGetNumNonlinSolvConvFails);
+  long nfe = 0, nfi = 0;
+  ARKStepGetNumRhsEvals(m.mem, &nfe, &nfi);
+  s.rhs_evaluations = nfe + nfi;
+  s.newton_iterations = m.counter(ARKStepGetNumNonlinSolvIters);
+  return s;
+}
+
+}  // namespace rccm

@@ -1,0 +1,77 @@
+#include "rccm/beta_ode.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace rccm {
+
+namespace {
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+void SolveCounts::add(const ContactSolution& s) {
+  ++contact_solves;
+  sweeps += s.iterations;
+  max_sweeps = std::max(max_sweeps, s.iterations);
+}
+
+BetaOde::BetaOde(const Model& model, const SolverParams& solver, Observer observer)
+    : model_(model),
+      solver_(solver),
+      observer_(std::move(observer)),
+      committed_(InterfaceState::initial(model)),
+      alpha_(model.config().interface.alpha),
+      w_(model.config().interface.w),
+      Cn_(model.config().interface.Cn),
+      Ct_(model.config().interface.Ct),
+      step_start_(now()) {}
+
+const ContactSolution& BetaOde::solve(double t, const Eigen::VectorXd& beta) {
+  // A stage value may leave [0, 1] by round-off; the interface law is defined inside.
+  last_ = solve_contact(model_, solver_, t, beta.cwiseMax(0.0).cwiseMin(1.0), committed_);
+  last_t_ = t;
+  last_beta_ = beta;
+  totals_.add(last_);
+  step_counts_.add(last_);
+  return last_;
+}
+
+Eigen::VectorXd BetaOde::opening_energy(const ContactSolution& s) const {
+  Eigen::VectorXd e(size());
+  for (int i = 0; i < size(); ++i) e[i] = Cn_ * s.u[2 * i + 1] * s.u[2 * i + 1] + Ct_ * s.u[2 * i] * s.u[2 * i];
+  return e;
+}
+
+const ContactSolution& BetaOde::rhs(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> f) {
+  const ContactSolution& s = solve(t, beta);
+  for (int i = 0; i < size(); ++i)
+    f[i] = beta_rate(beta[i], s.u.segment<2>(2 * i), Ct_, Cn_, w_, alpha_);  // MODEL.md s6
+  return s;
+}
+
+Eigen::VectorXd BetaOde::jacobian_diagonal(double t, const Eigen::VectorXd& beta) {
+  if (t != last_t_ || beta != last_beta_) solve(t, beta);
+  const Eigen::VectorXd e = opening_energy(last_);
+  Eigen::VectorXd J = Eigen::VectorXd::Zero(size());
+  for (int i = 0; i < size(); ++i)
+    if (e[i] * beta[i] > w_) J[i] = -e[i] / alpha_;
+  return J;
+}
+
+void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
+  // beta in [0, 1] and never increasing (MODEL.md s6), whatever the scheme's round-off.
+  beta = beta.cwiseMax(0.0).cwiseMin(committed_.beta);
+  const double t_old = committed_.t;
+  const ContactSolution& s = solve(t, beta);
+  const ContactResiduals r = residuals(model_.contact_problem(t, beta, committed_.ut()), s);
+  committed_.commit(t, beta, s);
+  ++step_;
+  const double clock = now();
+  if (observer_) observer_({step_, t, t - t_old, committed_, s, r, step_counts_, clock - step_start_});
+  step_counts_ = SolveCounts{};
+  step_start_ = clock;
+}
+
+}  // namespace rccm
