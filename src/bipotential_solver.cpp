@@ -137,6 +137,9 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   // attainable absolute accuracy of Rbar is about eps |y| (a floor for both criteria).
   const auto noise_floor = [&]() { return 1e3 * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff(); };
 
+  // The projections of the last sweep: in the cone by construction, they are the reported
+  // Rbar (y - E u differs from them by the round-off of the cancellation above).
+  Eigen::VectorXd R_projected = Eigen::VectorXd::Zero(m);
   std::vector<Status> previous_pattern, solved_pattern;
   int repeats = 0, since_exact = 0;
   const int max_exact_solves = 10;
@@ -162,6 +165,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
         ui = b.Wb * R + c;
         if (change <= 0.1 * tol * std::max(R.norm(), F_old) + noise) break;
       }
+      R_projected.segment<2>(2 * i) = R;
       const Vec2 yi = R + b.E.cwiseProduct(ui);
       if (gauss_seidel) {  // update u at once (MODEL.md s5: far more robust)
         const Vec2 dy = yi - s.y.segment<2>(2 * i);
@@ -194,6 +198,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
     }
     if (change <= tol && s.residual <= tol) {
       s.converged = true;
+      s.Rbar = R_projected;
       break;
     }
 

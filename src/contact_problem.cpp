@@ -10,7 +10,7 @@ Eigen::VectorXd ContactSolution::Radh(const ContactProblem& pb) const {
 }
 
 double ContactResiduals::max() const {
-  return std::max({penetration, tension, complementarity, coulomb, stick_slip, slip_direction});
+  return std::max({equilibrium, penetration, tension, complementarity, coulomb, stick_slip, slip_direction});
 }
 
 ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s) {
@@ -18,6 +18,8 @@ ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s) {
   const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), r.cwiseAbs().maxCoeff(), 1e-300});
   const double U = std::max({s.u.cwiseAbs().maxCoeff(), pb.g0.cwiseAbs().maxCoeff(), 1e-300});
   ContactResiduals c;
+  const Eigen::VectorXd y = s.Rbar + (pb.D1 - pb.Dbeta).cwiseProduct(s.u);
+  c.equilibrium = ((*pb.W0) * y + pb.q0 - s.u).cwiseAbs().maxCoeff() / U;
   for (int i = 0; i < pb.size(); ++i) {
     const double Rt = s.Rbar[2 * i], Rn = s.Rbar[2 * i + 1];
     const double g = pb.g0[i] + s.u[2 * i + 1], du = s.u[2 * i] - pb.ut_ref[i];

@@ -45,8 +45,10 @@ struct ContactSolution {
 };
 
 /// Residuals of the Signorini-Coulomb conditions, each relative to the problem's scale
-/// (forces to the largest interface force, displacements to the largest |u|).
+/// (forces to the largest interface force, displacements to the largest |u|), and of the
+/// condensed equilibrium u = W0 (Rbar + E u) + q0.
 struct ContactResiduals {
+  double equilibrium = 0;     // |W0 (Rbar + E u) + q0 - u| / max |u|
   double penetration = 0;     // max(0, -g)
   double tension = 0;         // max(0, -Rbar_n)
   double complementarity = 0; // |g Rbar_n|

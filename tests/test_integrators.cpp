@@ -1,0 +1,122 @@
+// The beta integrators against the single-node closed form (MODEL.md s3, s6): every contact
+// node's displacement is prescribed, u_n = v t exactly, so each node follows the
+// single-node ODE through the whole pipeline (config, model, contact solve, integrator).
+#include "closed_form.hpp"
+#include "helpers.hpp"
+#include "rccm/simulation.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace rccm;
+
+namespace {
+
+struct Opening {
+  double C, v, w, alpha, T = 10.0;
+};
+
+std::string opening_config(const Opening& o) {
+  return R"(
+mesh = { size = [4.0, 1.0]; nx = 2; ny = 1; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = )" + std::to_string(o.C) + "; Ct = " + std::to_string(o.C) +
+         "; w = " + std::to_string(o.w) + "; alpha = " + std::to_string(o.alpha) + R"(; mu = 0.2; };
+loads = (
+  { node_set = "bottom"; type = "displacement"; component = "x"; value = 0.0; },
+  { node_set = "bottom"; type = "displacement"; component = "y"; value = )" +
+         std::to_string(o.v * o.T) + R"(; }
+);
+time = { T = )" + std::to_string(o.T) + R"(; steps = 200; };
+output = { times = [0.5, 1.0, 2.0, 5.0]; };
+)";
+}
+
+/// Largest error of beta (every node, every output time) against `exact`.
+template <class Exact>
+double max_error(const RunResult& r, Exact exact, bool relative = false) {
+  double e = 0;
+  for (const Snapshot& s : r.snapshots)
+    for (Eigen::Index i = 0; i < s.beta.size(); ++i) {
+      const double ref = exact(s.t);
+      e = std::max(e, std::abs(s.beta[i] - ref) / (relative ? ref : 1.0));
+    }
+  return e;
+}
+
+RunResult run(const Opening& o, const std::vector<std::string>& overrides) {
+  return Simulation(test::config_from_text(opening_config(o), overrides), nullptr).run();
+}
+
+}  // namespace
+
+TEST_CASE("closed form: the integrating-factor solution satisfies the ODE", "[integrator]") {
+  // An independent check of the reference itself: finite-difference residual of the ODE.
+  const double C = 2e5, v = 0.03, w = 1e-6;
+  for (double alpha : {0.01, 1.0, 100.0})
+    for (double t : {0.5, 2.0, 7.0}) {
+      const double h = 1e-5 * t;
+      const double b = test::exact_beta(t, C, v, w, alpha, 1.0);
+      const double db = (test::exact_beta(t + h, C, v, w, alpha, 1.0) - test::exact_beta(t - h, C, v, w, alpha, 1.0)) / (2 * h);
+      const double rhs = -std::max(0.0, C * v * v * t * t * b - w) / alpha;
+      INFO("alpha " << alpha << " t " << t);
+      CHECK(db == Approx(rhs).epsilon(1e-5).margin(1e-14));
+    }
+}
+
+TEST_CASE("ARKODE at rtol 1e-8 follows the closed form within 1e-6, alpha 0.01 to 100", "[integrator]") {
+  for (double alpha : {0.01, 0.1, 1.0, 10.0, 100.0}) {
+    const Opening o{2e5, 0.03, 1e-6, alpha};  // the B1 interface
+    const RunResult r = run(o, {"integrator.rtol=1e-8", "integrator.atol=1e-12"});
+    const double e = max_error(r, [&](double t) { return test::exact_beta(t, o.C, o.v, o.w, o.alpha, 1.0); });
+    INFO("alpha " << alpha << ": max error " << e << " in " << r.integrator.steps << " steps");
+    CHECK(e <= 1e-6);
+  }
+  // The explicit table too, where the ODE is not stiff.
+  for (double alpha : {10.0, 100.0}) {
+    const Opening o{2e5, 0.03, 1e-6, alpha};
+    const RunResult r = run(o, {"integrator.scheme=erk", "integrator.rtol=1e-8", "integrator.atol=1e-12"});
+    const double e = max_error(r, [&](double t) { return test::exact_beta(t, o.C, o.v, o.w, o.alpha, 1.0); });
+    INFO("erk alpha " << alpha << ": max error " << e);
+    CHECK(e <= 1e-6);
+  }
+}
+
+TEST_CASE("explicit Euler converges at order 1", "[integrator]") {
+  const Opening o{1e3, 0.01, 1e-3, 1.0};  // dt C u^2 / alpha <= 0.5 at 200 steps: stable
+  std::vector<double> errors;
+  for (int steps : {200, 400, 800}) {
+    const RunResult r = run(o, {"integrator.method=euler", "time.steps=" + std::to_string(steps)});
+    CHECK(r.warnings.empty());
+    errors.push_back(max_error(r, [&](double t) { return test::exact_beta(t, o.C, o.v, o.w, o.alpha, 1.0); }));
+  }
+  INFO("errors " << errors[0] << " " << errors[1] << " " << errors[2]);
+  CHECK(errors[0] / errors[1] == Approx(2.0).epsilon(0.1));
+  CHECK(errors[1] / errors[2] == Approx(2.0).epsilon(0.1));
+}
+
+TEST_CASE("rate-independent integrator is exact on a prescribed opening", "[integrator]") {
+  const Opening o{2e5, 0.03, 1e-6, 0.0};
+  const RunResult r = run(o, {"integrator.method=rate-independent"});
+  CHECK(max_error(r, [&](double t) { return test::rate_independent_beta(t, o.C, o.v, o.w, 1.0); }, true) <= 1e-12);
+}
+
+TEST_CASE("as alpha -> 0 the viscous solution approaches the rate-independent one", "[integrator]") {
+  std::vector<double> errors;
+  for (double alpha : {1.0, 0.1, 0.01, 0.001}) {
+    const Opening o{1e3, 0.01, 1e-3, alpha};
+    const RunResult r = run(o, {"integrator.rtol=1e-8", "integrator.atol=1e-12"});
+    errors.push_back(max_error(r, [&](double t) { return test::rate_independent_beta(t, o.C, o.v, o.w, 1.0); }, true));
+  }
+  INFO("relative distance to the rate-independent limit: " << errors[0] << " " << errors[1] << " " << errors[2]
+                                                           << " " << errors[3]);
+  for (std::size_t k = 1; k < errors.size(); ++k) CHECK(errors[k] < 0.5 * errors[k - 1]);
+}
+
+TEST_CASE("explicit Euler past its stability limit says so", "[integrator]") {
+  const Opening o{2e5, 0.03, 1e-6, 1.0};  // B1's interface: dt C u^2 / alpha ~ 860 at 210 steps
+  const RunResult r = run(o, {"integrator.method=euler", "time.steps=210"});
+  REQUIRE(r.warnings.size() == 1);
+  CHECK_THAT(r.warnings[0], Catch::Contains("unstable") && Catch::Contains("clamped"));
+}
