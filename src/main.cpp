@@ -13,9 +13,12 @@
 namespace {
 
 void print_totals(const rccm::RunResult& r) {
-  std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d), %.3f s\n",
+  const double per_solve = (r.wall_seconds - r.setup_seconds) / std::max(1L, r.solves.contact_solves);
+  std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d)\n"
+              "# wall %.3f s: setup %.4f s, %.1f us per contact solve\n",
               r.integrator.steps, r.integrator.rejected, r.solves.contact_solves,
-              double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves), r.solves.max_sweeps, r.wall_seconds);
+              double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves), r.solves.max_sweeps, r.wall_seconds,
+              r.setup_seconds, 1e6 * per_solve);
   for (const std::string& w : r.warnings) std::cerr << "rccm: warning: " << w << "\n";
 }
 
