@@ -23,7 +23,7 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
       throw InputError(cfg.file + ": interface.alpha must be > 0 for integrator '" + name + "'");
     cases.push_back(std::move(c));
   }
-  for (CompareCase& c : cases) c.result = Simulation(c.config, nullptr).run();
+  for (CompareCase& c : cases) c.result = Simulation(c.config).run();
   return cases;
 }
 

@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
+#include <unistd.h>
 #include <iostream>
 
 namespace {
@@ -38,7 +39,9 @@ int main(int argc, char** argv) {
     sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
     sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
   }
-  run->add_flag("--quiet,-q", quiet, "no per-step output");
+  bool verbose = false;
+  run->add_flag("--quiet,-q", quiet, "no progress line");
+  run->add_flag("--verbose,-v", verbose, "one line per accepted step on stdout");
   compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, fixed")
       ->delimiter(',');
   compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
@@ -53,8 +56,14 @@ int main(int argc, char** argv) {
   try {
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (*run) {
-      rccm::Simulation sim(cfg, quiet ? nullptr : &std::cout);
-      print_totals(sim.run());
+      rccm::RunOptions options;
+      options.step_log = verbose ? &std::cout : nullptr;
+      options.progress = !quiet && isatty(fileno(stderr));
+      options.write_files = true;
+      const rccm::RunResult r = rccm::Simulation(cfg, options).run();
+      print_totals(r);
+      std::printf("# results in %s (report.txt, interface_t*.csv, history.csv, curves.csv, results.pvd)\n",
+                  cfg.output.directory.c_str());
     } else {
       std::cout << "# " << config_file << "\n";
       rccm::print_comparison(std::cout, rccm::run_comparison(cfg, integrators, euler_steps));

@@ -40,8 +40,8 @@ Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
     throw InputError(cfg.file + ": interface.beta0: give one value or one per contact node (" +
                      std::to_string(interface_.size()) + "), got " + std::to_string(cfg.interface.beta0.size()));
   loads_ = make_load_cases(mesh_, cfg);
-  body_ = std::make_unique<ElasticProblem>(assemble_stiffness(mesh_, cfg.material),
-                                           interface_.initial_springs(), prescribed_dofs(loads_));
+  K_ = assemble_stiffness(mesh_, cfg.material);
+  body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_));
   condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_);
   D1_.resize(2 * interface_.size());
   for (int i = 0; i < interface_.size(); ++i)

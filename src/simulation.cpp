@@ -1,13 +1,17 @@
 #include "rccm/simulation.hpp"
 
 #include "rccm/beta_ode.hpp"
+#include "rccm/body_state.hpp"
 #include "rccm/model.hpp"
+#include "rccm/result_writer.hpp"
+#include "rccm/run_report.hpp"
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ostream>
+#include <iostream>
+#include <memory>
 
 namespace rccm {
 
@@ -29,6 +33,12 @@ void log_step(std::ostream& out, const AcceptedStep& a) {
                 a.counts.contact_solves, double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves),
                 a.counts.max_sweeps, a.solution.residual, a.state.beta.minCoeff(), count[1], count[2], count[0]);
   out << line;
+}
+
+void progress_line(const AcceptedStep& a, double T) {
+  std::fprintf(stderr, "\r  t = %9.5f s (%5.1f %%)  dt = %8.2e  min beta = %10.4e  sweeps/solve = %4.1f   ", a.t,
+               100 * a.t / T, a.dt, a.state.beta.minCoeff(),
+               double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves));
 }
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
@@ -57,32 +67,53 @@ RunResult Simulation::run() {
   const Model model(cfg_);
   result.setup_seconds = seconds_since(start);
   result.watched = model.watched();
-  if (log_)
-    *log_ << "# " << cfg_.file << ": " << model.mesh().nodes.size() << " nodes, " << model.mesh().cells.size()
-          << " cells, " << model.contact_nodes() << " contact nodes; integrator " << method_name(cfg_.integrator.method)
-          << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
+  result.nodes = static_cast<int>(model.mesh().nodes.size());
+  result.cells = static_cast<int>(model.mesh().cells.size());
+  result.dofs = 2 * result.nodes;
+  result.contact_nodes = model.contact_nodes();
+  if (options_.step_log)
+    *options_.step_log << "# " << cfg_.file << ": " << result.nodes << " nodes, " << result.cells << " cells, "
+                       << result.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
+                       << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
 
-  // 2. The beta ODE, its initial state committed at t = 0, and the integrator.
-  BetaOde ode(model, cfg_.solver, [this](const AcceptedStep& a) {
-    if (log_) log_step(*log_, a);
-    if (observer_) observer_(a);
+  // 2. Result files, only now that the input is known to be good.
+  std::unique_ptr<ResultWriter> writer;
+  if (options_.write_files) writer = std::make_unique<ResultWriter>(model, cfg_.output.directory);
+
+  // 3. The beta ODE; each accepted step updates the energy balance, the files and the logs.
+  std::unique_ptr<EnergyBalance> energy;
+  BetaOde ode(model, cfg_.solver, [&](const AcceptedStep& a) {
+    const BodyState body = body_state(model, a.state);
+    if (!energy) energy = std::make_unique<EnergyBalance>(model, a.state, body);
+    else energy->add(a.state, body);
+    result.steps.push_back({a.step, a.t, a.dt, a.counts.contact_solves,
+                            double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves), a.counts.max_sweeps,
+                            a.cpu_seconds});
+    if (writer) writer->step(a, body, energy->terms());
+    if (options_.step_log) log_step(*options_.step_log, a);
+    if (options_.progress) progress_line(a, cfg_.time.T);
+    if (options_.observer) options_.observer(a);
   });
   Eigen::VectorXd beta0 = model.initial_beta();
   ode.accept(0.0, beta0);
   const std::unique_ptr<AdhesionIntegrator> integrator = make_integrator(ode, cfg_);
 
-  // 3. Integrate to each output time exactly.
+  // 4. Integrate to each output time exactly; write the interface and the mesh there.
   for (double t_out : stop_times(cfg_)) {
     integrator->advance(t_out);
     const InterfaceState& s = ode.committed();
     result.snapshots.push_back({s.t, s.beta, s.Rbar, s.u});
+    if (writer) writer->output(s, body_state(model, s));
   }
+  if (options_.progress) std::fputs("\n", stderr);
 
-  // 4. Report.
+  // 5. Report.
   result.integrator = integrator->stats();
   result.solves = ode.totals();
+  result.energy = energy->terms();
   result.warnings = integrator->warnings();
   result.wall_seconds = seconds_since(start);
+  if (writer) write_reports(writer->directory(), cfg_, result);
   return result;
 }
 

@@ -45,7 +45,9 @@ struct StepChecks {
 };
 
 RunResult run(const std::string& file, const std::vector<std::string>& overrides, StepChecks& checks) {
-  return Simulation(load_config(shipped(file), overrides), nullptr, std::ref(checks)).run();
+  RunOptions options;
+  options.observer = std::ref(checks);
+  return Simulation(load_config(shipped(file), overrides), options).run();
 }
 
 }  // namespace

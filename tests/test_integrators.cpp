@@ -46,7 +46,7 @@ double max_error(const RunResult& r, Exact exact, bool relative = false) {
 }
 
 RunResult run(const Opening& o, const std::vector<std::string>& overrides) {
-  return Simulation(test::config_from_text(opening_config(o), overrides), nullptr).run();
+  return Simulation(test::config_from_text(opening_config(o), overrides)).run();
 }
 
 }  // namespace

@@ -41,11 +41,15 @@ class Model {
   /// (MODEL.md s4). Its W0 points into this model.
   ContactProblem contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& ut_ref) const;
 
+  const SparseMatrix& stiffness() const { return K_; }  // bare K, all DOFs
+  const std::vector<LoadCase>& loads() const { return loads_; }
+
  private:
   Config cfg_;
   Mesh mesh_;
   Interface interface_;
   std::vector<LoadCase> loads_;
+  SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
   Eigen::VectorXd D1_;

@@ -1,8 +1,9 @@
-// A whole run: set up the model, integrate beta to each output time, report.
+// A whole run: set up the model, integrate beta to each output time, write and report.
 #pragma once
 
 #include "rccm/adhesion_integrator.hpp"
 #include "rccm/config.hpp"
+#include "rccm/energy_balance.hpp"
 
 #include <Eigen/Core>
 
@@ -18,29 +19,45 @@ struct Snapshot {
   Eigen::VectorXd beta, Rbar, u;
 };
 
+/// Work of one accepted step, for the report's per-step table (the paper's Tables 1-2).
+struct StepRecord {
+  int step = 0;
+  double t = 0, dt = 0;
+  long contact_solves = 0;
+  double sweeps_mean = 0;
+  int sweeps_max = 0;
+  double cpu_seconds = 0;
+};
+
 struct RunResult {
   std::vector<Snapshot> snapshots;  // at the output times and at T
   std::vector<int> watched;         // contact node of each output.watch point
+  std::vector<StepRecord> steps;    // every accepted step (step 0: the initial state)
   IntegratorStats integrator;
   SolveCounts solves;
+  EnergyTerms energy;               // at T (MODEL.md s3)
   std::vector<std::string> warnings;
+  int nodes = 0, cells = 0, contact_nodes = 0, dofs = 0;
   double setup_seconds = 0, wall_seconds = 0;
+};
+
+struct RunOptions {
+  std::ostream* step_log = nullptr;  // one line per accepted step
+  bool progress = false;             // one updating line on stderr
+  bool write_files = false;          // results in output.directory
+  BetaOde::Observer observer;        // called after each accepted step (tests)
 };
 
 class Simulation {
  public:
-  /// `log` receives one line per accepted step (nullptr: silent); `observer`, if set, is
-  /// called after each accepted step too (tests, writers).
-  Simulation(const Config& cfg, std::ostream* log, BetaOde::Observer observer = {})
-      : cfg_(cfg), log_(log), observer_(std::move(observer)) {}
+  Simulation(const Config& cfg, RunOptions options = {}) : cfg_(cfg), options_(std::move(options)) {}
 
-  /// Runs the whole problem; throws InputError (bad model) or SolveError (failed solve).
+  /// Runs the whole problem; throws InputError (bad model: nothing written) or SolveError.
   RunResult run();
 
  private:
   Config cfg_;
-  std::ostream* log_;
-  BetaOde::Observer observer_;
+  RunOptions options_;
 };
 
 /// The accepted times of a fixed-step run: steps equal increments of [0, T] plus the output times.

@@ -1,0 +1,28 @@
+// ParaView output: one .vtu per output time (deformed-mesh data and interface data on the
+// nodes, strain and stress on the cells) and a .pvd that ties them to their times.
+#pragma once
+
+#include "rccm/body_state.hpp"
+#include "rccm/interface_state.hpp"
+#include "rccm/model.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace rccm {
+
+class VtkWriter {
+ public:
+  VtkWriter(const Model& model, std::string directory) : model_(model), directory_(std::move(directory)) {}
+
+  /// Writes mesh_<k>.vtu for this state and rewrites results.pvd (complete after each call).
+  void write(const InterfaceState& s, const BodyState& b);
+
+ private:
+  const Model& model_;
+  std::string directory_;
+  std::vector<std::pair<double, std::string>> files_;
+};
+
+}  // namespace rccm
