@@ -4,12 +4,15 @@
 #include "rccm/config.hpp"
 #include "rccm/errors.hpp"
 #include "rccm/simulation.hpp"
+#include "rccm/sweep.hpp"
 
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
 #include <unistd.h>
+#include <filesystem>
 #include <iostream>
+#include <thread>
 
 namespace {
 
@@ -35,7 +38,13 @@ int main(int argc, char** argv) {
 
   CLI::App* run = app.add_subcommand("run", "run the problem of a config file");
   CLI::App* compare = app.add_subcommand("compare", "run one problem with several integrators, side by side");
-  for (CLI::App* sub : {run, compare}) {
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "run a config for every value of listed settings (--set interface.alpha=0,0.1,1,10), in parallel");
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::string sweep_dir;
+  sweep->add_option("--jobs,-j", jobs, "cases run at once (default: the machine's cores)")->check(CLI::PositiveNumber);
+  sweep->add_option("--output", sweep_dir, "directory of the cases and the summary (default: <output.directory>-sweep)");
+  for (CLI::App* sub : {run, compare, sweep}) {
     sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
     sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
   }
@@ -54,6 +63,25 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*sweep) {
+      std::vector<rccm::SweepAxis> axes;
+      std::vector<std::string> fixed;
+      rccm::split_sweep_settings(overrides, axes, fixed);
+      if (axes.empty())
+        throw rccm::InputError("sweep: give at least one list, e.g. --set interface.alpha=0,0.01,0.1,1,10,100");
+      const rccm::Config cfg = rccm::load_config(config_file, fixed);
+      if (sweep_dir.empty()) sweep_dir = cfg.output.directory + "-sweep";
+      std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, sweep_dir);
+      std::filesystem::create_directories(sweep_dir);
+      std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << sweep_dir << "\n";
+      rccm::run_sweep(cases, jobs);
+      rccm::write_sweep_summary(std::cout, sweep_dir, cases, argv[0], config_file);
+      std::cout << "# " << sweep_dir << "/summary.csv, " << sweep_dir << "/jobs.txt; plots: tools/plot --overlay "
+                << sweep_dir << " " << sweep_dir << "/*\n";
+      for (const rccm::SweepCase& c : cases)
+        if (!c.error.empty()) return 3;
+      return 0;
+    }
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (*run) {
       rccm::RunOptions options;

@@ -86,6 +86,11 @@ RunResult Simulation::run() {
     const BodyState body = body_state(model, a.state);
     if (!energy) energy = std::make_unique<EnergyBalance>(model, a.state, body);
     else energy->add(a.state, body);
+    result.peak_force.resize(body.force.size(), 0.0);
+    result.peak_time.resize(body.force.size(), 0.0);
+    for (std::size_t k = 0; k < body.force.size(); ++k)
+      if (std::abs(body.force[k]) > std::abs(result.peak_force[k]))
+        result.peak_force[k] = body.force[k], result.peak_time[k] = a.t;
     result.steps.push_back({a.step, a.t, a.dt, a.counts.contact_solves,
                             double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves), a.counts.max_sweeps,
                             a.cpu_seconds});
@@ -102,7 +107,8 @@ RunResult Simulation::run() {
   for (double t_out : stop_times(cfg_)) {
     integrator->advance(t_out);
     const InterfaceState& s = ode.committed();
-    result.snapshots.push_back({s.t, s.beta, s.Rbar, s.u});
+    const double debonded = (s.beta.array() < 0.5).select(model.interface().a.array(), 0.0).sum();
+    result.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded});
     if (writer) writer->output(s, body_state(model, s));
   }
   if (options_.progress) std::fputs("\n", stderr);

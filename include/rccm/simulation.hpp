@@ -17,6 +17,7 @@ namespace rccm {
 struct Snapshot {
   double t = 0;
   Eigen::VectorXd beta, Rbar, u;
+  double debonded_length = 0;  // sum of the tributary lengths where beta < 0.5, mm
 };
 
 /// Work of one accepted step, for the report's per-step table (the paper's Tables 1-2).
@@ -36,6 +37,8 @@ struct RunResult {
   IntegratorStats integrator;
   SolveCounts solves;
   EnergyTerms energy;               // at T (MODEL.md s3)
+  std::vector<double> peak_force;   // per load: largest |resultant force| over the run, N
+  std::vector<double> peak_time;    // per load: when it occurred, s
   std::vector<std::string> warnings;
   int nodes = 0, cells = 0, contact_nodes = 0, dofs = 0;
   double setup_seconds = 0, wall_seconds = 0;
