@@ -55,6 +55,8 @@ struct ArkodeIntegrator::Impl {
     check(ARKStepSStolerances(mem, p.rtol, p.atol), "ARKStepSStolerances");
     check(ARKStepSetMaxStep(mem, p.max_step > 0 ? p.max_step : cfg.time.T / 50), "ARKStepSetMaxStep");
     if (p.initial_step > 0) check(ARKStepSetInitStep(mem, p.initial_step), "ARKStepSetInitStep");
+    // A collapsing step (a nearly unrestrained body, a discontinuous f) fails instead of crawling.
+    check(ARKStepSetMinStep(mem, p.min_step > 0 ? p.min_step : 1e-9 * cfg.time.T), "ARKStepSetMinStep");
     check(ARKStepSetMaxNumSteps(mem, p.max_steps), "ARKStepSetMaxNumSteps");
     check(ARKStepSetPostprocessStepFn(mem, accepted), "ARKStepSetPostprocessStepFn");
     // No ARKStepSetConstraints(beta >= 0): near beta ~ w / (C u^2) ~ 1e-9 it cut steps until
@@ -146,8 +148,16 @@ void ArkodeIntegrator::advance(double t_out) {
       << ARKStepGetReturnFlagName(flag) << ", flag " << flag << ")";
   if (!m.arkode_message.empty()) msg << ": " << m.arkode_message;
   if (!m.contact_failure.empty()) msg << "\n  last contact failure: " << m.contact_failure;
+  const Eigen::VectorXd& beta = m.ode.committed().beta;
+  msg << "\n  state: min beta " << beta.minCoeff() << ", " << (beta.array() < 1e-3).count() << " of " << beta.size()
+      << " contact nodes with beta < 1e-3";
+  if (2 * (beta.array() < 1e-3).count() > beta.size())
+    msg << ": most adhesion is gone and the body may be nearly free (held by forces ~ beta^2 C u)";
   if (flag == ARK_TOO_MUCH_WORK)
     msg << "\n  raise integrator.max_steps, or use scheme = \"dirk\" (an explicit scheme on this stiff ODE needs tiny steps)";
+  else if (flag == ARK_ERR_FAILURE || flag == ARK_CONV_FAILURE)
+    msg << "\n  the step size collapsed: if most of the adhesion is gone the body may be nearly free "
+           "(held by forces ~ beta^2 C u); restrain it, reduce the load, or lower integrator.min_step";
   else
     msg << "\n  loosen integrator.rtol/atol, lower integrator.max_step, or see the contact failure above";
   throw SolveError(msg.str());

@@ -405,7 +405,7 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   }
 
   if (const Setting* g = r.optional_group(root, "integrator")) {
-    r.only(*g, {"method", "scheme", "table", "rtol", "atol", "max_step", "initial_step", "max_steps",
+    r.only(*g, {"method", "scheme", "table", "rtol", "atol", "max_step", "initial_step", "min_step", "max_steps",
                 "fixed_point_tolerance", "fixed_point_iterations"});
     auto& A = c.integrator;
     A.method = static_cast<Method>(r.choice(*g, "method", {"arkode", "euler", "rate-independent", "fixed"}, 0));
@@ -421,6 +421,8 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
     if (g->exists("max_step")) r.check(A.max_step >= 0, (*g)["max_step"], "must be >= 0", A.max_step);
     A.initial_step = r.number(*g, "initial_step", A.initial_step);
     if (g->exists("initial_step")) r.check(A.initial_step >= 0, (*g)["initial_step"], "must be >= 0", A.initial_step);
+    A.min_step = r.number(*g, "min_step", A.min_step);
+    if (g->exists("min_step")) r.check(A.min_step >= 0, (*g)["min_step"], "must be >= 0", A.min_step);
     A.max_steps = r.integer(*g, "max_steps", A.max_steps);
     if (g->exists("max_steps")) r.check(A.max_steps >= 1, (*g)["max_steps"], "must be >= 1", A.max_steps);
     positive("fixed_point_tolerance", A.fixed_point_tolerance, 0);

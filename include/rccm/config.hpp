@@ -94,6 +94,7 @@ struct IntegratorParams {
   double rtol = 1e-6, atol = 1e-10;           // arkode tolerances (beta is dimensionless)
   double max_step = 0.0;                      // s; 0: T / 50
   double initial_step = 0.0;                  // s; 0: ARKODE's estimate
+  double min_step = 0.0;                      // s; 0: 1e-9 T (a smaller step fails the run)
   int max_steps = 200000;                     // accepted steps per output interval
   double fixed_point_tolerance = 1e-10;       // rate-independent: change of beta
   int fixed_point_iterations = 500;
