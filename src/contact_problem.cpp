@@ -1,5 +1,7 @@
 #include "rccm/contact_problem.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <cmath>
 
@@ -34,6 +36,38 @@ ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s) {
     if (Rn > 1e-6 * F) c.slip_direction = std::max(c.slip_direction, Rt * du / (F * U));
   }
   return c;
+}
+
+}  // namespace rccm
+
+namespace rccm {
+
+PlainContactProblem plain_form(const ContactProblem& pb) {
+  const Eigen::MatrixXd& W0 = *pb.W0;
+  const Eigen::Index m = W0.rows();
+  const Eigen::VectorXd E = pb.D1 - pb.Dbeta;
+  const Eigen::PartialPivLU<Eigen::MatrixXd> A(Eigen::MatrixXd::Identity(m, m) - W0 * E.asDiagonal());
+  PlainContactProblem p;
+  p.W = A.solve(W0);
+  p.W = 0.5 * (p.W + p.W.transpose()).eval();
+  p.q = A.solve(pb.q0);
+  for (int i = 0; i < pb.size(); ++i) {
+    p.q[2 * i] -= pb.ut_ref[i];
+    p.q[2 * i + 1] += pb.g0[i];
+  }
+  p.mu = pb.mubar;
+  return p;
+}
+
+ContactProblem from_plain(const PlainContactProblem& plain) {
+  ContactProblem pb;
+  const Eigen::Index n = plain.mu.size();
+  pb.W0 = &plain.W;
+  pb.q0 = plain.q;
+  pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(2 * n);
+  pb.mubar = plain.mu;
+  pb.g0 = pb.ut_ref = Eigen::VectorXd::Zero(n);
+  return pb;
 }
 
 }  // namespace rccm

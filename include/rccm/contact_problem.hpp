@@ -60,4 +60,17 @@ struct ContactResiduals {
 
 ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s);
 
+/// The same problem with the springs folded in and the gap and slip shifts in q:
+///   v = W R + q,  v = (u_t - ut_ref, g0 + u_n),  W = (I - W0 E)^-1 W0,  q = (I - W0 E)^-1 q0 + shifts,
+/// a plain frictional contact problem (W, q, mu) as Siconos and FCLIB pose it (MODEL.md s4),
+/// in (t, n) order. Dense: for checking against a peer, not for production solves.
+struct PlainContactProblem {
+  Eigen::MatrixXd W;
+  Eigen::VectorXd q, mu;
+};
+PlainContactProblem plain_form(const ContactProblem& pb);
+
+/// A ContactProblem that poses `plain` (no springs, no gap, no previous slip); it points into it.
+ContactProblem from_plain(const PlainContactProblem& plain);
+
 }  // namespace rccm

@@ -1,0 +1,68 @@
+// Siconos numerics as an independent peer for the contact step (built when Siconos is found).
+#include "rccm/bipotential_solver.hpp"
+#include "rccm/config.hpp"
+#include "rccm/interface_state.hpp"
+#include "rccm/simulation.hpp"
+#include "siconos_peer.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+using namespace rccm;
+
+namespace {
+SolverParams tight() {
+  SolverParams p;
+  p.tolerance = 1e-12;
+  p.max_iterations = 20000;
+  return p;
+}
+}  // namespace
+
+TEST_CASE("Siconos test problems: where Siconos NSGS converges, so does the bipotential solver", "[peer]") {
+  const std::string dir = std::string(RCCM_SOURCE_DIR) + "/../shared/data/siconos-fc2d/";
+  if (!std::ifstream(dir + "README.md")) {
+    WARN("not checked: " << dir << " is missing (the shared/ folder lives beside the checkout)");
+    return;
+  }
+  for (const char* f : {"FrictionContactProblem00394.dat", "FrictionContactProblem00031.dat",
+                        "FrictionContactProblem00071.dat"}) {
+    const PlainContactProblem p = peer::read_dat(dir + f);
+    const peer::PeerSolution n = peer::solve(p, "nsgs", 1e-10, 100000);
+    const ContactSolution s = BipotentialSolver(tight()).solve(from_plain(p));
+    INFO(f << ": siconos error " << n.error << " in " << n.iterations << ", ours " << peer::error(p, s.Rbar) << " in "
+           << s.iterations);
+    REQUIRE(n.info == 0);
+    CHECK(s.converged);
+    CHECK(peer::error(p, s.Rbar) <= 1e-8);
+    CHECK((s.Rbar - n.R).norm() <= 1e-6 * (1 + n.R.norm()));
+  }
+}
+
+TEST_CASE("B1 and B2 condensed problems: Siconos and the bipotential solver give the same reactions", "[peer]") {
+  for (const char* file : {"b1.cfg", "b2.cfg"}) {
+    const Config cfg = load_config(std::string(RCCM_SOURCE_DIR) + "/config/" + file, {"integrator.method=euler"});
+    const Model model(cfg);
+    int checked = 0;
+    Eigen::VectorXd ut_prev = Eigen::VectorXd::Zero(model.contact_nodes());
+    RunOptions options;
+    options.observer = [&](const AcceptedStep& a) {
+      if (a.step > 0 && a.step % 40 == 0) {
+        // The problem this step solved at commit: (t, beta) from the previous accepted slip.
+        const ContactProblem pb = model.contact_problem(a.t, a.state.beta, ut_prev);
+        const PlainContactProblem plain = plain_form(pb);
+        const peer::PeerSolution n = peer::solve(plain, "nsgs", 1e-14, 100000);
+        const ContactSolution ours = BipotentialSolver(tight()).solve(pb);
+        const double scale = std::max(ours.Rbar.norm(), 1e-300);
+        INFO(file << " step " << a.step << ": siconos error " << n.error << ", ours " << peer::error(plain, ours.Rbar));
+        if (scale > 1e-6) CHECK((ours.Rbar - n.R).norm() <= 1e-8 * scale);
+        CHECK(peer::error(plain, ours.Rbar) <= 1e-9);
+        ++checked;
+      }
+      ut_prev = a.state.ut();
+    };
+    Simulation(cfg, options).run();
+    CHECK(checked >= 4);
+  }
+}

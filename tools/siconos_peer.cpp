@@ -1,0 +1,113 @@
+#include "siconos_peer.hpp"
+
+#include "rccm/errors.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+
+// Siconos' C headers use C99 `restrict`.
+#define restrict __restrict
+extern "C" {
+#include <siconos/numerics/FrictionContactProblem.h>
+#include <siconos/numerics/Friction_cst.h>
+#include <siconos/numerics/NonSmoothDrivers.h>
+#include <siconos/numerics/NumericsMatrix.h>
+#include <siconos/numerics/SolverOptions.h>
+#include <siconos/numerics/fc2d_compute_error.h>
+}
+#undef restrict
+
+namespace rccm::peer {
+
+namespace {
+
+/// Swaps (t, n) and (n, t) in each pair.
+Eigen::VectorXd swap_pairs(const Eigen::VectorXd& v) {
+  Eigen::VectorXd out(v.size());
+  for (Eigen::Index i = 0; i + 1 < v.size(); i += 2) out[i] = v[i + 1], out[i + 1] = v[i];
+  return out;
+}
+
+Eigen::MatrixXd swap_pairs(const Eigen::MatrixXd& W) {
+  Eigen::VectorXi perm(W.rows());
+  for (Eigen::Index i = 0; i + 1 < W.rows(); i += 2) perm[i] = static_cast<int>(i + 1), perm[i + 1] = static_cast<int>(i);
+  Eigen::MatrixXd out(W.rows(), W.cols());
+  for (Eigen::Index j = 0; j < W.cols(); ++j)
+    for (Eigen::Index i = 0; i < W.rows(); ++i) out(i, j) = W(perm[i], perm[j]);
+  return out;
+}
+
+/// A Siconos problem owning dense copies of the data (normal first).
+FrictionContactProblem* to_siconos(const PlainContactProblem& p) {
+  const int n = static_cast<int>(p.q.size()), nc = n / 2;
+  NumericsMatrix* M = NM_create(NM_DENSE, n, n);
+  const Eigen::MatrixXd W = swap_pairs(p.W);
+  std::memcpy(M->matrix0, W.data(), sizeof(double) * n * n);
+  auto* q = static_cast<double*>(std::malloc(sizeof(double) * n));
+  auto* mu = static_cast<double*>(std::malloc(sizeof(double) * nc));
+  const Eigen::VectorXd qs = swap_pairs(p.q);
+  std::memcpy(q, qs.data(), sizeof(double) * n);
+  std::memcpy(mu, p.mu.data(), sizeof(double) * nc);
+  return frictionContactProblem_new_with_data(2, nc, M, q, mu);
+}
+
+int solver_id(const std::string& name) {
+  if (name == "nsgs") return SICONOS_FRICTION_2D_NSGS;
+  if (name == "lemke") return SICONOS_FRICTION_2D_LEMKE;
+  if (name == "enum") return SICONOS_FRICTION_2D_ENUM;
+  throw InputError("unknown Siconos solver '" + name + "' (nsgs, lemke, enum)");
+}
+
+}  // namespace
+
+PlainContactProblem read_dat(const std::string& path) {
+  FILE* f = std::fopen(path.c_str(), "r");
+  if (!f) throw InputError(path + ": cannot open");
+  FrictionContactProblem* fc = frictionContact_newFromFile(f);
+  std::fclose(f);
+  if (!fc || fc->dimension != 2)
+    throw InputError(path + ": not a 2D frictional contact problem in Siconos' .dat format");
+  const int n = 2 * fc->numberOfContacts;
+  PlainContactProblem p;
+  Eigen::MatrixXd W(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) W(i, j) = NM_get_value(fc->M, i, j);
+  p.W = swap_pairs(W);
+  p.q = swap_pairs(Eigen::Map<const Eigen::VectorXd>(fc->q, n).eval());
+  p.mu = Eigen::Map<const Eigen::VectorXd>(fc->mu, fc->numberOfContacts);
+  frictionContactProblem_free(fc);
+  return p;
+}
+
+PeerSolution solve(const PlainContactProblem& p, const std::string& solver, double tolerance, int max_iterations) {
+  FrictionContactProblem* fc = to_siconos(p);
+  SolverOptions* options = solver_options_create(solver_id(solver));
+  options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
+  options->dparam[SICONOS_DPARAM_TOL] = tolerance;
+  const int n = static_cast<int>(p.q.size());
+  Eigen::VectorXd reaction = Eigen::VectorXd::Zero(n), velocity = Eigen::VectorXd::Zero(n);
+  PeerSolution s;
+  const auto start = std::chrono::steady_clock::now();
+  s.info = fc2d_driver(fc, reaction.data(), velocity.data(), options);
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  s.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
+  s.R = swap_pairs(reaction);
+  solver_options_delete(options);
+  frictionContactProblem_free(fc);
+  s.error = error(p, s.R);
+  return s;
+}
+
+double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
+  FrictionContactProblem* fc = to_siconos(p);
+  Eigen::VectorXd z = swap_pairs(R);
+  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(p.W * R + p.q));
+  double e = 0;
+  fc2d_compute_error(fc, z.data(), w.data(), 1e-300, std::max(p.q.norm(), 1e-300), &e);
+  frictionContactProblem_free(fc);
+  return e;
+}
+
+}  // namespace rccm::peer

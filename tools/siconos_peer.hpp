@@ -1,0 +1,29 @@
+// Siconos numerics (Debian libsiconos-numerics-dev) as an independent peer for the contact
+// step: its fc2d solvers and error measure on our plain contact problems. Siconos orders each
+// contact (normal, tangent); ours is (tangent, normal): the swap happens here only.
+#pragma once
+
+#include "rccm/contact_problem.hpp"
+
+#include <string>
+
+namespace rccm::peer {
+
+struct PeerSolution {
+  Eigen::VectorXd R;   // (t, n) per contact
+  int iterations = 0;
+  double error = 0;    // Siconos' own error measure at the end
+  int info = 0;        // 0: Siconos says converged
+  double seconds = 0;
+};
+
+/// Reads a Siconos .dat frictional contact problem (dimension 2) into the plain form.
+PlainContactProblem read_dat(const std::string& path);
+
+/// Solves with fc2d_driver: "nsgs", "lemke" or "enum".
+PeerSolution solve(const PlainContactProblem& p, const std::string& solver, double tolerance, int max_iterations);
+
+/// fc2d_compute_error of a solution R ((t, n) order), normalised by |q|.
+double error(const PlainContactProblem& p, const Eigen::VectorXd& R);
+
+}  // namespace rccm::peer
