@@ -8,8 +8,8 @@ BodyState body_state(const Model& model, const InterfaceState& s) {
   b.u = model.condensation().displacement(s.t, s.y);
   const Interface& I = model.interface();
   b.r = s.Rbar;
-  for (int i = 0; i < I.size(); ++i)  // Radh = -a beta^2 (Ct u_t, Cn u_n), MODEL.md s3
-    b.r.segment<2>(2 * i) -= I.a[i] * s.beta[i] * s.beta[i] * Vec2(I.Ct * s.u[2 * i], I.Cn * s.u[2 * i + 1]);
+  for (int i = 0; i < I.size(); ++i)  // r = Rbar + Radh, MODEL.md s3
+    b.r.segment<2>(2 * i) += adhesive_force(I.a[i], s.beta[i], I.Ct, I.Cn, s.u.segment<2>(2 * i));
   b.f_ext = model.stiffness() * b.u - I.P.transpose() * b.r;  // K u = f + P^T r (MODEL.md s1)
   for (const LoadCase& lc : model.loads()) {
     b.value.push_back(lc.amplitude(s.t));

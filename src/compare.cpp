@@ -2,7 +2,9 @@
 
 #include "rccm/errors.hpp"
 
+#include <algorithm>
 #include <cstdio>
+#include <iterator>
 #include <ostream>
 
 namespace rccm {
@@ -12,11 +14,12 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
   std::vector<CompareCase> cases;
   for (const std::string& name : integrators) {
     CompareCase c{name, cfg, {}};
-    if (name == "arkode") c.config.integrator.method = Method::Arkode;
-    else if (name == "euler") c.config.integrator.method = Method::Euler;
-    else if (name == "rate-independent") c.config.integrator.method = Method::RateIndependent;
-    else if (name == "fixed") c.config.integrator.method = Method::Fixed;
-    else throw InputError("--integrators: unknown integrator '" + name + "' (arkode, euler, rate-independent, fixed)");
+    const Method methods[] = {Method::Arkode, Method::Euler, Method::RateIndependent, Method::Fixed};
+    const Method* m = std::find_if(std::begin(methods), std::end(methods),
+                                   [&](Method x) { return name == method_name(x); });
+    if (m == std::end(methods))
+      throw InputError("--integrators: unknown integrator '" + name + "' (arkode, euler, rate-independent, fixed)");
+    c.config.integrator.method = *m;
     if (name == "euler" && euler_steps > 0) c.config.time.steps = euler_steps;
     if (c.config.integrator.method != Method::RateIndependent && c.config.integrator.method != Method::Fixed &&
         !(c.config.interface.alpha > 0))

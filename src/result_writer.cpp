@@ -73,9 +73,9 @@ void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyT
     cell(history_, v);
   const Interface& I = model_.interface();
   for (int i : model_.watched()) {
-    const double scale = I.a[i] * a.state.beta[i] * a.state.beta[i];
-    for (double v : {a.state.beta[i], a.state.u[2 * i + 1], a.state.u[2 * i], -scale * I.Cn * a.state.u[2 * i + 1],
-                     -scale * I.Ct * a.state.u[2 * i], a.state.Rbar[2 * i + 1], a.state.Rbar[2 * i]})
+    const Vec2 Radh = adhesive_force(I.a[i], a.state.beta[i], I.Ct, I.Cn, a.state.u.segment<2>(2 * i));
+    for (double v : {a.state.beta[i], a.state.u[2 * i + 1], a.state.u[2 * i], Radh[1], Radh[0],
+                     a.state.Rbar[2 * i + 1], a.state.Rbar[2 * i]})
       cell(history_, v);
   }
   history_ << "\n" << std::flush;

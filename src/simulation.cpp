@@ -82,8 +82,9 @@ RunResult Simulation::run() {
 
   // 3. The beta ODE; each accepted step updates the energy balance, the files and the logs.
   std::unique_ptr<EnergyBalance> energy;
+  BodyState body;  // of the last accepted step
   BetaOde ode(model, cfg_.solver, [&](const AcceptedStep& a) {
-    const BodyState body = body_state(model, a.state);
+    body = body_state(model, a.state);
     if (!energy) energy = std::make_unique<EnergyBalance>(model, a.state, body);
     else energy->add(a.state, body);
     result.peak_force.resize(body.force.size(), 0.0);
@@ -109,7 +110,7 @@ RunResult Simulation::run() {
     const InterfaceState& s = ode.committed();
     const double debonded = (s.beta.array() < 0.5).select(model.interface().a.array(), 0.0).sum();
     result.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded});
-    if (writer) writer->output(s, body_state(model, s));
+    if (writer) writer->output(s, body);  // the last accepted step is the one at t_out
   }
   if (options_.progress) std::fputs("\n", stderr);
 
