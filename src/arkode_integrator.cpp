@@ -55,6 +55,7 @@ struct ArkodeIntegrator::Impl {
     check(ARKStepSStolerances(mem, p.rtol, p.atol), "ARKStepSStolerances");
     check(ARKStepSetMaxStep(mem, p.max_step > 0 ? p.max_step : cfg.time.T / 50), "ARKStepSetMaxStep");
     if (p.initial_step > 0) check(ARKStepSetInitStep(mem, p.initial_step), "ARKStepSetInitStep");
+    if (p.fixed_step > 0) check(ARKStepSetFixedStep(mem, p.fixed_step), "ARKStepSetFixedStep");
     // A collapsing step (a nearly unrestrained body, a discontinuous f) fails instead of crawling.
     check(ARKStepSetMinStep(mem, p.min_step > 0 ? p.min_step : 1e-9 * cfg.time.T), "ARKStepSetMinStep");
     check(ARKStepSetMaxNumSteps(mem, p.max_steps), "ARKStepSetMaxNumSteps");

@@ -229,6 +229,13 @@ void copy_value(const Setting& src, Setting& parent, const std::string& name) {
 }
 
 /// Applies one "--set path=value"; the value is parsed by libconfig itself.
+/// libconfig's parse message, with the fix for its most common cause.
+std::string syntax_hint(const std::string& error) {
+  if (error.find("mismatched element type") != std::string::npos)
+    return error + ": an array holds one type, write 1.0 (not 1) beside other decimals";
+  return error;
+}
+
 void apply_override(libconfig::Config& cfg, const std::string& item) {
   const auto eq = item.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -247,7 +254,7 @@ void apply_override(libconfig::Config& cfg, const std::string& item) {
     value.readString("v = " + text + ";");
   } catch (const libconfig::ParseException& e) {
     throw InputError("--set " + path + ": cannot parse the value '" + item.substr(eq + 1) +
-                     "' (" + e.getError() + ")");
+                     "' (" + syntax_hint(e.getError()) + ")");
   }
   Setting* parent = &cfg.getRoot();
   std::size_t start = 0;
@@ -286,7 +293,7 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   r.only(root, {"mesh", "material", "interface", "loads", "time", "solver", "integrator", "output"});
 
   const Setting& m = r.group(root, "mesh");
-  r.only(m, {"origin", "size", "nx", "ny", "element", "node_sets"});
+  r.only(m, {"origin", "size", "nx", "ny", "element", "rotation", "node_sets"});
   if (m.exists("origin")) c.mesh.origin = r.fixed<2>(m, "origin");
   c.mesh.size = r.fixed<2>(m, "size");
   for (int k = 0; k < 2; ++k) r.check(c.mesh.size[k] > 0, m["size"], "lengths must be > 0", c.mesh.size[k]);
@@ -295,6 +302,7 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   r.check(c.mesh.nx >= 1, m["nx"], "must be >= 1", c.mesh.nx);
   r.check(c.mesh.ny >= 1, m["ny"], "must be >= 1", c.mesh.ny);
   c.mesh.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
+  c.mesh.rotation = r.number(m, "rotation", 0.0);
   if (m.exists("node_sets")) {
     const Setting& sets = m["node_sets"];
     if (!sets.isList()) r.fail(sets, "must be a list ( { name = ...; box = [...]; }, ... )");
@@ -355,8 +363,11 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
     if (I.beta0.empty()) r.fail(in["beta0"], "must not be empty");
     for (double b : I.beta0) r.check(b >= 0 && b <= 1, in["beta0"], "must be in [0, 1]", b);
   }
-  I.g0 = r.number(in, "g0", 0.0);
-  r.check(I.g0 >= 0, in.exists("g0") ? in["g0"] : in, "must be >= 0", I.g0);
+  if (in.exists("g0")) {
+    I.g0 = r.numbers(in["g0"]);
+    if (I.g0.empty()) r.fail(in["g0"], "must not be empty");
+    for (double g : I.g0) r.check(g >= 0, in["g0"], "must be >= 0", g);
+  }
 
   const Setting& t = r.group(root, "time");
   r.only(t, {"T", "steps"});
@@ -405,7 +416,7 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   }
 
   if (const Setting* g = r.optional_group(root, "integrator")) {
-    r.only(*g, {"method", "scheme", "table", "rtol", "atol", "max_step", "initial_step", "min_step", "max_steps",
+    r.only(*g, {"method", "scheme", "table", "rtol", "atol", "max_step", "initial_step", "fixed_step", "min_step", "max_steps",
                 "fixed_point_tolerance", "fixed_point_iterations"});
     auto& A = c.integrator;
     A.method = static_cast<Method>(r.choice(*g, "method", {"arkode", "euler", "rate-independent", "fixed"}, 0));
@@ -421,6 +432,8 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
     if (g->exists("max_step")) r.check(A.max_step >= 0, (*g)["max_step"], "must be >= 0", A.max_step);
     A.initial_step = r.number(*g, "initial_step", A.initial_step);
     if (g->exists("initial_step")) r.check(A.initial_step >= 0, (*g)["initial_step"], "must be >= 0", A.initial_step);
+    A.fixed_step = r.number(*g, "fixed_step", A.fixed_step);
+    if (g->exists("fixed_step")) r.check(A.fixed_step >= 0, (*g)["fixed_step"], "must be >= 0", A.fixed_step);
     A.min_step = r.number(*g, "min_step", A.min_step);
     if (g->exists("min_step")) r.check(A.min_step >= 0, (*g)["min_step"], "must be >= 0", A.min_step);
     A.max_steps = r.integer(*g, "max_steps", A.max_steps);
@@ -470,7 +483,7 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
     throw InputError(path + ": cannot read the file (does it exist?)");
   } catch (const libconfig::ParseException& e) {
     throw InputError(std::string(e.getFile() ? e.getFile() : path.c_str()) + ":" +
-                     std::to_string(e.getLine()) + ": syntax error: " + e.getError());
+                     std::to_string(e.getLine()) + ": syntax error: " + syntax_hint(e.getError()));
   }
   for (const std::string& o : overrides) apply_override(cfg, o);
   Reader reader(path);

@@ -2,7 +2,10 @@
 
 #include "rccm/errors.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
+#include <cmath>
 #include <array>
 
 namespace rccm {
@@ -34,6 +37,11 @@ std::vector<double> Mesh::tributary_lengths(const std::vector<int>& set) const {
   std::vector<double> out;
   for (int n : set) out.push_back(a[n]);
   return out;
+}
+
+Eigen::Vector2d placed(const MeshParams& p, const Eigen::Vector2d& x) {
+  const Eigen::Vector2d o(p.origin[0], p.origin[1]);
+  return o + Eigen::Rotation2Dd(p.rotation * M_PI / 180.0) * (x - o);
 }
 
 Mesh make_rectangle(const MeshParams& p) {
@@ -92,6 +100,8 @@ Mesh make_rectangle(const MeshParams& p) {
     }
     s[d.name] = nodes;
   }
+  if (p.rotation != 0.0)
+    for (Eigen::Vector2d& x : m.nodes) x = placed(p, x);
   return m;
 }
 

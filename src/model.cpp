@@ -12,7 +12,7 @@ std::vector<int> find_watched(const Config& cfg, const Mesh& mesh, const Interfa
   std::vector<int> out;
   const double reach = 1e-6 * std::max(cfg.mesh.size[0], cfg.mesh.size[1]) + I.a.maxCoeff();
   for (const WatchPoint& w : cfg.output.watch) {
-    const Eigen::Vector2d p(w.point[0], w.point[1]);
+    const Eigen::Vector2d p = placed(cfg.mesh, {w.point[0], w.point[1]});
     int best = 0;
     for (int i = 1; i < I.size(); ++i)
       if ((mesh.nodes[I.nodes[i]] - p).norm() < (mesh.nodes[I.nodes[best]] - p).norm()) best = i;
@@ -28,6 +28,18 @@ std::vector<int> find_watched(const Config& cfg, const Mesh& mesh, const Interfa
   return out;
 }
 
+/// One value per contact node from a config list of one value or one per node.
+Eigen::VectorXd per_node(const std::vector<double>& v, int n) {
+  if (v.size() == 1) return Eigen::VectorXd::Constant(n, v[0]);
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+void check_per_node(const Config& cfg, const char* setting, const std::vector<double>& v, int n) {
+  if (v.size() != 1 && static_cast<int>(v.size()) != n)
+    throw InputError(cfg.file + ": interface." + setting + ": give one value or one per contact node (" +
+                     std::to_string(n) + "), got " + std::to_string(v.size()));
+}
+
 }  // namespace
 
 Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
@@ -36,9 +48,9 @@ Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
   } catch (const InputError& e) {
     throw InputError(cfg.file + ": interface.boundary: " + e.what());
   }
-  if (cfg.interface.beta0.size() != 1 && static_cast<int>(cfg.interface.beta0.size()) != interface_.size())
-    throw InputError(cfg.file + ": interface.beta0: give one value or one per contact node (" +
-                     std::to_string(interface_.size()) + "), got " + std::to_string(cfg.interface.beta0.size()));
+  check_per_node(cfg, "beta0", cfg.interface.beta0, interface_.size());
+  check_per_node(cfg, "g0", cfg.interface.g0, interface_.size());
+  g0_ = per_node(cfg.interface.g0, interface_.size());
   loads_ = make_load_cases(mesh_, cfg);
   K_ = assemble_stiffness(mesh_, cfg.material);
   body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_));
@@ -49,11 +61,7 @@ Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
   watched_ = find_watched(cfg, mesh_, interface_);
 }
 
-Eigen::VectorXd Model::initial_beta() const {
-  const auto& b0 = cfg_.interface.beta0;
-  if (b0.size() == 1) return Eigen::VectorXd::Constant(interface_.size(), b0[0]);
-  return Eigen::Map<const Eigen::VectorXd>(b0.data(), static_cast<Eigen::Index>(b0.size()));
-}
+Eigen::VectorXd Model::initial_beta() const { return per_node(cfg_.interface.beta0, interface_.size()); }
 
 ContactProblem Model::contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& ut_ref) const {
   ContactProblem pb;
@@ -64,7 +72,7 @@ ContactProblem Model::contact_problem(double t, const Eigen::VectorXd& beta, con
   for (int i = 0; i < interface_.size(); ++i)
     pb.Dbeta.segment<2>(2 * i) = beta[i] * beta[i] * D1_.segment<2>(2 * i);  // MODEL.md s4, D(beta)
   pb.mubar = cfg_.interface.mu * (1.0 - beta.array());                     // paper eq. 20
-  pb.g0 = Eigen::VectorXd::Constant(interface_.size(), cfg_.interface.g0);
+  pb.g0 = g0_;
   pb.ut_ref = ut_ref;
   return pb;
 }

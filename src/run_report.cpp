@@ -82,6 +82,10 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "  imbalance                      " << fmt("%.3e", e.imbalance()) << " (relative "
       << fmt("%.3e", e.relative_error()) << ")\n"
       << "  normal contact work (0 exact)  " << fmt("%.3e", e.normal_contact_work) << "\n";
+  if (e.relative_error() > 1e-2)
+    out << "  The imbalance is large: beta fell by a large amount within single steps (a time step too\n"
+           "  coarse for the debonding, or snap-through in the rate-independent limit); refine the\n"
+           "  steps or tighten integrator.rtol (VERIFICATION.md, 'Energy balance when beta snaps').\n";
   for (const std::string& w : r.warnings) out << "\nwarning: " << w << "\n";
 }
 

@@ -1,11 +1,16 @@
 // Verification (VERIFICATION.md): energy balance, exact rate-independent results, symmetry
 // and invariance under a change of units.
 #include "helpers.hpp"
+#include "rccm/model.hpp"
 #include "rccm/simulation.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
 
 using namespace rccm;
 
@@ -110,4 +115,141 @@ TEST_CASE("changing units consistently (mm, N, MPa to m, N, Pa) gives the same d
           1e-6 * 1e-3 * mm.snapshots[k].u.cwiseAbs().maxCoeff());
   }
   CHECK(m.peak_force[0] == Approx(1e3 * mm.peak_force[0]).epsilon(1e-6));
+}
+
+namespace {
+
+/// Plane Hertz contact, frictionless and without adhesion (beta = 0): an elastic block
+/// pressed onto the rigid foundation through the gap g0(x) = x^2 / (2 R) of a cylinder of
+/// radius R. Half model (x >= 0, u_x = 0 on the symmetry line), traction q on the top,
+/// n cells per unit length. Returns the relative L2 error of the contact pressure against
+///   p(x) = p0 sqrt(1 - x^2 / a^2),  a^2 = 4 P R / (pi E*),  p0 = 2 P / (pi a),  E* = E / (1 - nu^2),
+/// with P = 2 q L the force of the whole cylinder; the block is 10 a wide and 10 a high.
+struct Hertz {
+  double l2_error = 0, force = 0, exact_force = 0, contact_half_width = 0, h = 0;
+};
+
+Hertz hertz(int n) {
+  const double a = 1.0, R = 100.0, E = 1000.0, nu = 0.3, L = 10.0;
+  const double Es = E / (1 - nu * nu), P = M_PI * Es * a * a / (4 * R), p0 = 2 * P / (M_PI * a), q = P / (2 * L);
+  const double h = 1.0 / n;
+  std::ostringstream g0;
+  g0 << std::scientific << std::setprecision(17);
+  for (int i = 0; i <= 2 * n; ++i) g0 << (i ? ", " : "") << (i * h) * (i * h) / (2 * R);
+  std::ostringstream text;
+  text << std::setprecision(17);
+  text << "mesh = { size = [" << L << ", " << L << "]; nx = " << n * 10 << "; ny = " << n * 10 << R"(; element = "Q4";
+  node_sets = ( { name = "contact"; box = [0.0, 2.0, 0.0, 0.0]; } ); };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "contact"; Cn = 1000.0; Ct = 1000.0; w = 0.0; mu = 0.0; beta0 = 0.0; g0 = [)"
+       << g0.str() << R"(]; };
+loads = ( { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "top"; type = "traction"; component = "y"; value = )"
+       << -q << R"(; } );
+time = { T = 1.0; steps = 1; };
+integrator = { method = "fixed"; };
+)";
+  const Config cfg = test::config_from_text(text.str());
+  const Model model(cfg);
+  const Snapshot s = Simulation(cfg).run().snapshots.back();
+  Hertz out;
+  out.h = h;
+  out.exact_force = P / 2;
+  double num = 0, den = 0;
+  for (int i = 0; i < model.contact_nodes(); ++i) {
+    const double x = model.mesh().nodes[model.interface().nodes[i]].x(), ai = model.interface().a[i];
+    const double p = s.Rbar[2 * i + 1] / ai, exact = p0 * std::sqrt(std::max(0.0, 1 - x * x / (a * a)));
+    num += ai * (p - exact) * (p - exact);
+    den += ai * exact * exact;
+    out.force += s.Rbar[2 * i + 1];
+    if (p > 0) out.contact_half_width = std::max(out.contact_half_width, x);
+  }
+  out.l2_error = std::sqrt(num / den);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("Hertz contact: the pressure converges to the analytical one under mesh refinement", "[verification]") {
+  std::cout << "Hertz: h/a  relative L2 error of the pressure  observed order  contact half-width/a\n";
+  std::vector<Hertz> runs;
+  for (int n : {4, 8, 16}) {
+    runs.push_back(hertz(n));
+    const Hertz& r = runs.back();
+    const double order = runs.size() > 1 ? std::log2(runs[runs.size() - 2].l2_error / r.l2_error) : 0.0;
+    std::cout << r.h << "  " << r.l2_error << "  " << order << "  " << r.contact_half_width << "\n";
+    INFO("h/a = " << r.h << ": L2 error " << r.l2_error << ", half-width " << r.contact_half_width);
+    CHECK(r.force == Approx(r.exact_force).epsilon(1e-9));              // equilibrium with the load
+    CHECK(std::abs(r.contact_half_width - 1.0) <= r.h + 1e-12);        // a to within one cell
+    if (runs.size() > 1) CHECK(order > 0.6);                             // first order, less the edge
+  }
+  CHECK(runs.back().l2_error < 0.04);
+}
+
+TEST_CASE("rotating the whole problem and the foundation normal leaves the interface quantities unchanged",
+          "[verification]") {
+  // B1 with A's displacement prescribed in both components, v(t) n: a load that turns with the body.
+  const auto rotated = [&](double degrees) {
+    const double c = std::cos(degrees * M_PI / 180), s = std::sin(degrees * M_PI / 180);
+    std::ostringstream n, loads;
+    n << std::setprecision(17) << std::showpoint << "interface.normal=[" << -s << ", " << c << "]";
+    loads << std::setprecision(17) << std::showpoint << "loads=({node_set=\"top_left\"; type=\"displacement\"; component=\"x\"; value="
+          << -0.06 * s << ";}, {node_set=\"top_left\"; type=\"displacement\"; component=\"y\"; value=" << 0.06 * c
+          << ";})";
+    return Simulation(load_config(shipped("b1.cfg"), {"mesh.rotation=" + std::to_string(degrees), n.str(),
+                                                      loads.str(), "time.T=2.0", "output.times=[1.0]"}))
+        .run();
+  };
+  const RunResult r0 = rotated(0.0);
+  REQUIRE(r0.snapshots.back().beta.minCoeff() < 0.5);  // a debonding front has formed
+  for (double degrees : {30.0, 90.0, 217.0}) {
+    const RunResult r = rotated(degrees);
+    REQUIRE(r.snapshots.size() == r0.snapshots.size());
+    for (std::size_t k = 0; k < r.snapshots.size(); ++k) {
+      const Snapshot &a = r0.snapshots[k], &b = r.snapshots[k];
+      INFO("rotation " << degrees << " degrees, t = " << a.t);
+      std::cout << "rotation " << degrees << " t " << a.t << ": max |dbeta| " << (a.beta - b.beta).cwiseAbs().maxCoeff()
+                << ", max |dRbar|/max|Rbar| "
+                << (a.Rbar - b.Rbar).cwiseAbs().maxCoeff() / a.Rbar.cwiseAbs().maxCoeff() << "\n";
+      CHECK((a.beta - b.beta).cwiseAbs().maxCoeff() <= 1e-10);
+      CHECK((a.u - b.u).cwiseAbs().maxCoeff() <= 1e-10 * a.u.cwiseAbs().maxCoeff());
+      CHECK((a.Rbar - b.Rbar).cwiseAbs().maxCoeff() <= 1e-10 * a.Rbar.cwiseAbs().maxCoeff());
+    }
+    CHECK(r.energy.external_work == Approx(r0.energy.external_work).epsilon(1e-6));
+  }
+}
+
+TEST_CASE("B1 under mesh refinement: beta along the interface at t1 converges", "[.long][verification]") {
+  // Meshes 32 x 2, 64 x 4, 128 x 8 (k = 1, 2, 4): beta at the coarse nodes, compared between
+  // successive meshes in the L1 norm along the interface, and the debonded length.
+  struct Level {
+    std::map<long, double> beta;  // by x in nm: the coarse nodes exist on every mesh
+    double debonded = 0;
+  };
+  std::vector<Level> levels;
+  for (int k : {1, 2, 4}) {
+    const Config cfg = load_config(shipped("b1.cfg"), {"mesh.nx=" + std::to_string(32 * k),
+                                                       "mesh.ny=" + std::to_string(2 * k), "time.T=3.571",
+                                                       "output.times=[3.571]"});
+    const Model model(cfg);
+    const Snapshot s = Simulation(cfg).run().snapshots.back();
+    Level l;
+    for (int i = 0; i < model.contact_nodes(); ++i)
+      l.beta[std::lround(1e6 * model.mesh().nodes[model.interface().nodes[i]].x())] = s.beta[i];
+    l.debonded = s.debonded_length;
+    levels.push_back(l);
+  }
+  std::vector<double> l1, front;
+  for (std::size_t j = 0; j + 1 < levels.size(); ++j) {
+    double e = 0;
+    for (const auto& [x, b] : levels[0].beta) e += std::abs(levels[j].beta.at(x) - levels[j + 1].beta.at(x));
+    l1.push_back(e / levels[0].beta.size());
+    front.push_back(std::abs(levels[j].debonded - levels[j + 1].debonded));
+  }
+  std::cout << "B1 refinement at t1: debonded length " << levels[0].debonded << ", " << levels[1].debonded << ", "
+            << levels[2].debonded << " mm; mean |beta_h - beta_h/2| " << l1[0] << ", " << l1[1]
+            << " (order " << std::log2(l1[0] / l1[1]) << "); debonded-length order "
+            << std::log2(front[0] / front[1]) << "\n";
+  CHECK(l1[1] < 0.75 * l1[0]);
+  CHECK(front[1] < 0.75 * front[0]);
 }

@@ -31,6 +31,7 @@ struct MeshParams {
   std::array<double, 2> size{};            // mm
   int nx = 0, ny = 0;                      // cells along x and y
   ElementType element = ElementType::T3;
+  double rotation = 0.0;                   // degrees, counter-clockwise about `origin`
   std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners
 };
 
@@ -49,7 +50,7 @@ struct InterfaceParams {
   double alpha = 1.0;                   // viscosity, N s/mm
   double mu = 0.0;                      // Coulomb coefficient
   std::vector<double> beta0{1.0};       // one value, or one per contact node
-  double g0 = 0.0;                      // initial gap, mm
+  std::vector<double> g0{0.0};          // initial gap, mm: one value, or one per contact node
 };
 
 enum class LoadKind { Displacement, Force, Traction };
@@ -94,6 +95,7 @@ struct IntegratorParams {
   double rtol = 1e-6, atol = 1e-10;           // arkode tolerances (beta is dimensionless)
   double max_step = 0.0;                      // s; 0: T / 50
   double initial_step = 0.0;                  // s; 0: ARKODE's estimate
+  double fixed_step = 0.0;                    // s; > 0: no error control (order studies); 0: adaptive
   double min_step = 0.0;                      // s; 0: 1e-9 T (a smaller step fails the run)
   int max_steps = 200000;                     // accepted steps per output interval
   double fixed_point_tolerance = 1e-10;       // rate-independent: change of beta
@@ -102,7 +104,7 @@ struct IntegratorParams {
 
 struct WatchPoint {
   std::string name;
-  std::array<double, 2> point{};  // mm; the nearest contact node is watched
+  std::array<double, 2> point{};  // mm, unrotated frame; the nearest contact node is watched
 };
 
 struct OutputParams {

@@ -28,9 +28,13 @@ struct Mesh {
   std::vector<double> tributary_lengths(const std::vector<int>& set) const;
 };
 
+/// Where the point x of the unrotated rectangle lies after `p.rotation` about `p.origin`.
+Eigen::Vector2d placed(const MeshParams& p, const Eigen::Vector2d& x);
+
 /// Structured rectangle with sets "left", "right", "bottom", "top", the corners
 /// "bottom_left", "bottom_right", "top_left", "top_right", "all", and the box sets of
-/// `p.node_sets`. T3 cells split each quad along (i,j)-(i+1,j+1) (BENCHMARKS.md B1).
+/// `p.node_sets` (boxes in the unrotated frame), finally rotated by `p.rotation`.
+/// T3 cells split each quad along (i,j)-(i+1,j+1) (BENCHMARKS.md B1).
 Mesh make_rectangle(const MeshParams& p);
 
 }  // namespace rccm

@@ -52,7 +52,7 @@ class Model {
   SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
-  Eigen::VectorXd D1_;
+  Eigen::VectorXd D1_, g0_;
   std::vector<int> watched_;
 };
 
