@@ -1,9 +1,9 @@
 #include "rccm/bipotential_solver.hpp"
 
+#include "rccm/active_set.hpp"
 #include "rccm/errors.hpp"
 
 #include <Eigen/Dense>
-#include <Eigen/Eigenvalues>
 
 #include <algorithm>
 #include <cmath>
@@ -46,8 +46,8 @@ std::vector<NodeBlock> make_blocks(const ContactProblem& pb, RhoRule rule) {
     b.M = A.inverse();
     b.Wb = b.M * b.Wii;
     b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
-    const Eigen::SelfAdjointEigenSolver<Mat2> eig(b.Wb, Eigen::EigenvaluesOnly);
-    const double lmax = eig.eigenvalues()[1];
+    const double half_trace = 0.5 * (b.Wb(0, 0) + b.Wb(1, 1)), half_gap = 0.5 * (b.Wb(0, 0) - b.Wb(1, 1));
+    const double lmax = half_trace + std::hypot(half_gap, b.Wb(0, 1));  // largest eigenvalue
     b.fixed = lmax <= 1e-14 * scale;
     if (b.fixed) {
       b.rho = 0;
@@ -72,40 +72,19 @@ double natural_map(const ContactProblem& pb, const NodeBlock& b, int i, const Ve
   return (R - project_cone(R - b.rho * s, pb.mubar[i])).norm();
 }
 
-/// Exact solution of the linear problem that a fixed status pattern defines, as a
-/// correction of the current y (so that a repeated solve refines an ill-conditioned one).
-/// Rows per node: separated Rbar = 0; stick u = (ut_ref, -g0); slide u_n = -g0 and
-/// Rbar_t = sign * mubar Rbar_n, with Rbar = y - E (W0 y + q0).
-Eigen::VectorXd solve_pattern(const ContactProblem& pb, const std::vector<NodeBlock>& blocks,
-                              const std::vector<Status>& status, const Eigen::VectorXd& Rbar,
-                              const Eigen::VectorXd& y) {
-  const Eigen::MatrixXd& W = *pb.W0;
-  const int m = 2 * pb.size();
-  Eigen::MatrixXd A(m, m);
-  Eigen::VectorXd rhs(m);
-  for (int i = 0; i < pb.size(); ++i) {
-    const int t = 2 * i, n = 2 * i + 1;
-    const Vec2& E = blocks[i].E;
-    // Row of Rbar_c as a function of y: e_c - E_c W0_c, constant -E_c q0_c.
-    auto rbar_row = [&](int c) -> Eigen::RowVectorXd {
-      Eigen::RowVectorXd r = -E[c - 2 * i] * W.row(c);
-      r[c] += 1.0;
-      return r;
-    };
-    if (status[i] == Status::Separated || blocks[i].fixed) {
-      A.row(t) = rbar_row(t), rhs[t] = E[0] * pb.q0[t];
-      A.row(n) = rbar_row(n), rhs[n] = E[1] * pb.q0[n];
-    } else if (status[i] == Status::Stick) {
-      A.row(t) = W.row(t), rhs[t] = pb.ut_ref[i] - pb.q0[t];
-      A.row(n) = W.row(n), rhs[n] = -pb.g0[i] - pb.q0[n];
-    } else {
-      const double sign = Rbar[t] > 0 ? 1.0 : -1.0, mb = pb.mubar[i];
-      A.row(t) = rbar_row(t) - sign * mb * rbar_row(n);
-      rhs[t] = E[0] * pb.q0[t] - sign * mb * E[1] * pb.q0[n];
-      A.row(n) = W.row(n), rhs[n] = -pb.g0[i] - pb.q0[n];
-    }
+/// The rows of each node in the exact step, from its status and the sign of its friction.
+std::vector<Rows> pattern_of(const std::vector<Status>& status, const std::vector<NodeBlock>& blocks,
+                             const Eigen::VectorXd& Rbar) {
+  std::vector<Rows> p(status.size());
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    if (status[i] == Status::Separated || blocks[i].fixed)
+      p[i] = Rows::Free;
+    else if (status[i] == Status::Stick)
+      p[i] = Rows::Stick;
+    else
+      p[i] = Rbar[2 * i] > 0 ? Rows::SlidePositive : Rows::SlideNegative;
   }
-  return y + A.partialPivLu().solve(rhs - A * y);
+  return p;
 }
 
 }  // namespace
@@ -126,7 +105,6 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   s.Rbar = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
   s.y = s.Rbar;
   if (u_start.size() == m) s.y += E.cwiseProduct(u_start);
-  s.u = W * s.y + pb.q0;
   s.status.assign(nc, Status::Separated);
   for (int i = 0; i < nc; ++i)
     if (blocks[i].fixed) s.Rbar.segment<2>(2 * i).setZero(), s.y.segment<2>(2 * i).setZero();
@@ -140,7 +118,8 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   // The projections of the last sweep: in the cone by construction, they are the reported
   // Rbar (y - E u differs from them by the round-off of the cancellation above).
   Eigen::VectorXd R_projected = Eigen::VectorXd::Zero(m);
-  std::vector<Status> previous_pattern, solved_pattern;
+  // The warm start's pattern counts as seen: the exact step may follow the first sweep.
+  std::vector<Rows> previous_pattern = active_set_.pattern(), solved_pattern;
   int repeats = 0, since_exact = 0;
   const int max_exact_solves = 10;
   for (s.iterations = 1; s.iterations <= params_.max_iterations; ++s.iterations) {
@@ -204,16 +183,18 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
 
     // Active set: once the pattern repeats, solve its linear problem exactly (then verify);
     // if the same pattern persists unconverged, refine that solve.
-    repeats = s.status == previous_pattern ? repeats + 1 : 0;
-    previous_pattern = s.status;
+    const std::vector<Rows> pattern = pattern_of(s.status, blocks, s.Rbar);
+    repeats = pattern == previous_pattern ? repeats + 1 : 0;
+    previous_pattern = pattern;
     ++since_exact;
-    if (params_.active_set && repeats >= 1 && (s.status != solved_pattern || since_exact >= 3) &&
+    if (params_.active_set && repeats >= 1 && (pattern != solved_pattern || since_exact >= 3) &&
         s.exact_solves < max_exact_solves) {
-      s.y = solve_pattern(pb, blocks, s.status, s.Rbar, s.y);
+      if (active_set_.solve(pb, pattern, s.y)) {
+        s.u = W * s.y + pb.q0;
+        s.Rbar = s.y - E.cwiseProduct(s.u);
+      }
       since_exact = 0;
-      s.u = W * s.y + pb.q0;
-      s.Rbar = s.y - E.cwiseProduct(s.u);
-      solved_pattern = s.status;
+      solved_pattern = pattern;
       ++s.exact_solves;
     }
   }

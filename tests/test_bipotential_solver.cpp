@@ -5,6 +5,8 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 using namespace rccm;
@@ -110,5 +112,32 @@ TEST_CASE("a single free node is solved exactly in each regime", "[solver]") {
     CHECK(s.Rbar[0] == Approx(-0.5));
     CHECK(s.u[0] == Approx(1.5));  // slip = q_t + R_t
     CHECK(s.status[0] == Status::Slide);
+  }
+}
+
+TEST_CASE("a solver reused along a sequence of problems (cached active-set factorization) gives fresh solutions",
+          "[solver]") {
+  // Like the stages of a time step: the same W0, beta and the load drifting, so the status
+  // pattern repeats or changes at a few nodes (low-rank update) or many (new factorization).
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  RandomProblem rp = random_problem(12, gen, true);
+  const BipotentialSolver reused(params(SweepForm::GaussSeidel, true));
+  ContactSolution previous;
+  for (int k = 0; k < 60; ++k) {
+    for (int i = 0; i < rp.pb.size(); ++i) {
+      const double beta = std::sqrt(rp.pb.Dbeta[2 * i] / rp.pb.D1[2 * i]);
+      const double next = std::clamp(beta * (1 - 0.05 * std::abs(U(gen))), 0.0, 1.0);
+      rp.pb.Dbeta.segment<2>(2 * i) = next * next * rp.pb.D1.segment<2>(2 * i);
+      rp.pb.mubar[i] = 0.4 * (1 - next);
+    }
+    rp.pb.q0 += 0.1 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
+    const ContactSolution warm = reused.solve(rp.pb, previous.Rbar, previous.u);
+    const ContactSolution fresh = BipotentialSolver(params(SweepForm::GaussSeidel, true)).solve(rp.pb);
+    INFO("problem " << k);
+    REQUIRE(warm.converged);
+    REQUIRE(residuals(rp.pb, warm).max() <= 1e-8);
+    REQUIRE((warm.Rbar - fresh.Rbar).norm() <= 1e-8 * (1 + fresh.Rbar.norm()));
+    previous = warm;
   }
 }

@@ -5,6 +5,7 @@
 // node-wise solve (a 2x2 matter), so a change of beta costs nothing global.
 #pragma once
 
+#include "rccm/active_set.hpp"
 #include "rccm/config.hpp"
 #include "rccm/contact_problem.hpp"
 
@@ -24,6 +25,9 @@ class BipotentialSolver {
 
  private:
   SolverParams params_;
+  // The exact step's factorization, reused while the status pattern repeats from one solve
+  // to the next (a cache: results do not depend on it beyond the tolerance).
+  mutable ActiveSetSystem active_set_;
 };
 
 }  // namespace rccm

@@ -1,0 +1,119 @@
+#include "rccm/active_set.hpp"
+
+#include <cmath>
+
+namespace rccm {
+
+Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::vector<Rows>& pattern,
+                                          const Eigen::VectorXd& y) const {
+  const Eigen::VectorXd u = *pb.W0 * y + pb.q0;
+  const Eigen::VectorXd Rbar = y - (pb.D1 - pb.Dbeta).cwiseProduct(u);
+  Eigen::VectorXd r(y.size());
+  for (int i = 0; i < pb.size(); ++i) {
+    const int t = 2 * i, n = 2 * i + 1;
+    switch (pattern[i]) {
+      case Rows::Free:
+        r[t] = -Rbar[t], r[n] = -Rbar[n];
+        break;
+      case Rows::Stick:
+        r[t] = pb.ut_ref[i] - u[t], r[n] = -pb.g0[i] - u[n];
+        break;
+      default: {
+        const double sign = pattern[i] == Rows::SlidePositive ? 1.0 : -1.0;
+        r[t] = -(Rbar[t] - sign * pb.mubar[i] * Rbar[n]), r[n] = -pb.g0[i] - u[n];
+      }
+    }
+  }
+  return r;
+}
+
+Eigen::Matrix<double, 2, Eigen::Dynamic> ActiveSetSystem::rows(const ContactProblem& pb, Rows kind, int i) const {
+  const Eigen::MatrixXd& W = *pb.W0;
+  const int t = 2 * i, n = 2 * i + 1;
+  // Row of Rbar_c as a function of y: e_c - E_c W0_c.
+  const auto rbar_row = [&](int c) -> Eigen::RowVectorXd {
+    Eigen::RowVectorXd row = -(pb.D1[c] - pb.Dbeta[c]) * W.row(c);
+    row[c] += 1.0;
+    return row;
+  };
+  Eigen::Matrix<double, 2, Eigen::Dynamic> A(2, W.cols());
+  switch (kind) {
+    case Rows::Free:
+      A.row(0) = rbar_row(t), A.row(1) = rbar_row(n);
+      break;
+    case Rows::Stick:
+      A.row(0) = W.row(t), A.row(1) = W.row(n);
+      break;
+    default: {
+      const double sign = kind == Rows::SlidePositive ? 1.0 : -1.0;
+      A.row(0) = rbar_row(t) - sign * pb.mubar[i] * rbar_row(n), A.row(1) = W.row(n);
+    }
+  }
+  return A;
+}
+
+bool ActiveSetSystem::prepare_update(const ContactProblem& pb, const std::vector<Rows>& pattern) {
+  std::vector<int> changed;
+  for (std::size_t i = 0; i < pattern.size(); ++i)
+    if (pattern[i] != factorized_[i]) changed.push_back(static_cast<int>(i));
+  const int c = 2 * static_cast<int>(changed.size()), m = static_cast<int>(A0_.rows());
+  if (c > max_changed_rows) return false;
+  // A = A0 + S D: rows 2i, 2i+1 of the changed nodes replaced (Sherman-Morrison-Woodbury).
+  D_.resize(c, m);
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, c);
+  for (int k = 0; k < c / 2; ++k) {
+    const int i = changed[k];
+    D_.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
+    S(2 * i, 2 * k) = S(2 * i + 1, 2 * k + 1) = 1.0;
+  }
+  Z_ = lu_.solve(S);
+  capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
+  return true;
+}
+
+Eigen::VectorXd ActiveSetSystem::apply_inverse(const Eigen::VectorXd& r) const {
+  Eigen::VectorXd x = lu_.solve(r);
+  if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
+  return x;
+}
+
+Eigen::MatrixXd ActiveSetSystem::matrix(const ContactProblem& pb, const std::vector<Rows>& pattern) const {
+  Eigen::MatrixXd A(pb.W0->rows(), pb.W0->cols());
+  for (int i = 0; i < pb.size(); ++i) A.middleRows<2>(2 * i) = rows(pb, pattern[i], i);
+  return A;
+}
+
+bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& pattern, Eigen::VectorXd& y) {
+  Eigen::VectorXd r = residual(pb, pattern, y);
+  const double r0 = r.norm();
+  if (r0 == 0) return true;
+  // Refinement with the factorization of an earlier beta and pattern (a few nodes changed:
+  // low-rank update): each step must gain a factor 10, unless y has stopped moving.
+  D_.resize(0, 0);
+  if (factorized_.size() == pattern.size() && prepare_update(pb, pattern)) {
+    double previous = r0;
+    for (int k = 0; k < 6; ++k) {
+      const Eigen::VectorXd dy = apply_inverse(r);
+      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy);
+      const double norm = r_next.norm(), step = dy.norm(), size = y.norm();
+      const bool still = step <= 1e-12 * size;
+      if (!std::isfinite(norm) || (norm > 0.1 * previous && !still)) break;  // stale: factorize afresh
+      y += dy, r = r_next, previous = norm;
+      if (still || norm <= 1e-13 * r0) return true;
+    }
+  }
+  D_.resize(0, 0);
+  A0_ = matrix(pb, pattern);
+  lu_.compute(A0_);
+  ++factorizations_;
+  factorized_ = pattern;
+  const Eigen::VectorXd dy = lu_.solve(r);
+  if (!dy.allFinite()) {
+    factorized_.clear();
+    return false;
+  }
+  y += dy;
+  return true;
+}
+
+}  // namespace rccm
