@@ -11,8 +11,9 @@ double now() {
 }
 }  // namespace
 
-void SolveCounts::add(const ContactSolution& s) {
+void SolveCounts::add(const ContactSolution& s, double solve_seconds) {
   ++contact_solves;
+  seconds += solve_seconds;
   sweeps += s.iterations;
   max_sweeps = std::max(max_sweeps, s.iterations);
 }
@@ -30,11 +31,13 @@ BetaOde::BetaOde(const Model& model, const SolverParams& solver, Observer observ
 
 const ContactSolution& BetaOde::solve(double t, const Eigen::VectorXd& beta) {
   // A stage value may leave [0, 1] by round-off; the interface law is defined inside.
+  const double start = now();
   last_ = solve_contact(model_, solver_, t, beta.cwiseMax(0.0).cwiseMin(1.0), committed_);
+  const double elapsed = now() - start;
   last_t_ = t;
   last_beta_ = beta;
-  totals_.add(last_);
-  step_counts_.add(last_);
+  totals_.add(last_, elapsed);
+  step_counts_.add(last_, elapsed);
   return last_;
 }
 

@@ -1,5 +1,6 @@
 // rccm: quasi-static FE contact with the RCCM interface law, solved by the bipotential method.
 // Exit status: 0 success, 2 bad input (nothing written), 3 a solve that failed, 1 anything else.
+#include "rccm/bench.hpp"
 #include "rccm/compare.hpp"
 #include "rccm/config.hpp"
 #include "rccm/errors.hpp"
@@ -48,6 +49,18 @@ int main(int argc, char** argv) {
     sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
     sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
   }
+  CLI::App* bench = app.add_subcommand(
+      "bench", "time B1 and B2 with each integrator against the paper's totals; --scale: the refined B1 family");
+  std::string bench_dir = "config", bench_csv, bench_json;
+  int scale_levels = 0;
+  double scale_time = 1.0;
+  bench->add_option("--config-dir", bench_dir, "where b1.cfg and b2.cfg are (default: config)");
+  bench->add_option("--csv", bench_csv, "also write the table as CSV");
+  bench->add_option("--json", bench_json, "also write the table as JSON");
+  bench->add_option("--scale", scale_levels, "refined B1 family: levels 1x, 2x, 4x, ... cells in each direction")
+      ->check(CLI::Range(0, 12));
+  bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
+      ->check(CLI::PositiveNumber);
   bool verbose = false;
   run->add_flag("--quiet,-q", quiet, "no progress line");
   run->add_flag("--verbose,-v", verbose, "one line per accepted step on stdout");
@@ -63,6 +76,28 @@ int main(int argc, char** argv) {
   }
 
   try {
+    if (*bench) {
+      std::vector<rccm::BenchRow> rows;
+      rccm::print_bench_header(std::cout);
+      for (const rccm::BenchCase& c : rccm::paper_cases(bench_dir)) {
+        rows.push_back(rccm::run_bench_case(c));
+        rccm::print_bench_row(std::cout, rows.back());
+      }
+      if (scale_levels > 0) {
+        std::vector<rccm::BenchRow> scale;
+        std::cout << "\n# refined B1, t in [0, " << scale_time << "] s\n";
+        rccm::print_bench_header(std::cout);
+        for (const rccm::BenchCase& c : rccm::scale_cases(bench_dir, scale_levels, scale_time)) {
+          scale.push_back(rccm::run_bench_case(c));
+          rccm::print_bench_row(std::cout, scale.back());
+        }
+        rccm::print_growth(std::cout, scale);
+        rows.insert(rows.end(), scale.begin(), scale.end());
+      }
+      if (!bench_csv.empty()) rccm::write_bench_csv(bench_csv, rows);
+      if (!bench_json.empty()) rccm::write_bench_json(bench_json, rows);
+      return 0;
+    }
     if (*sweep) {
       std::vector<rccm::SweepAxis> axes;
       std::vector<std::string> fixed;

@@ -20,7 +20,8 @@ struct SolveCounts {
   long contact_solves = 0;
   long sweeps = 0;
   int max_sweeps = 0;
-  void add(const ContactSolution& s);
+  double seconds = 0;  // wall time inside the contact solves (problem set-up and bipotential solver)
+  void add(const ContactSolution& s, double solve_seconds);
 };
 
 /// What an observer sees after each accepted step.
