@@ -15,16 +15,7 @@ Condensation::Condensation(const ElasticProblem& body, const Interface& interfac
   U_ = body.solve(f, ud);
   Q_ = interface.P * U_;
 
-  // W0 = P K0^-1 P^T, a block of columns at a time to bound the memory of the right-hand sides.
-  const Eigen::Index m = interface.P.rows(), block = 64;
-  const SparseMatrix Pt = interface.P.transpose();
-  W0_.resize(m, m);
-  for (Eigen::Index c = 0; c < m; c += block) {
-    const Eigen::Index nb = std::min(block, m - c);
-    const Eigen::MatrixXd rhs = Pt.middleCols(c, nb);
-    W0_.middleCols(c, nb) = interface.P * body.solve(rhs, Eigen::MatrixXd::Zero(ndof, nb));
-  }
-  W0_ = 0.5 * (W0_ + W0_.transpose());  // symmetric in exact arithmetic
+  W0_ = body.flexibility(interface.P);
 }
 
 Eigen::VectorXd Condensation::q0(double t) const {

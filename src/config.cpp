@@ -228,7 +228,6 @@ void copy_value(const Setting& src, Setting& parent, const std::string& name) {
   }
 }
 
-/// Applies one "--set path=value"; the value is parsed by libconfig itself.
 /// libconfig's parse message, with the fix for its most common cause.
 std::string syntax_hint(const std::string& error) {
   if (error.find("mismatched element type") != std::string::npos)
@@ -236,6 +235,8 @@ std::string syntax_hint(const std::string& error) {
   return error;
 }
 
+/// Applies one "--set path=value"; the value is parsed by libconfig itself. A path part
+/// [k] selects the k-th element of a list (loads.[0].value).
 void apply_override(libconfig::Config& cfg, const std::string& item) {
   const auto eq = item.find('=');
   if (eq == std::string::npos || eq == 0)
@@ -260,11 +261,25 @@ void apply_override(libconfig::Config& cfg, const std::string& item) {
   std::size_t start = 0;
   for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.', start)) {
     const std::string part = path.substr(start, dot - start);
-    if (!parent->exists(part)) parent->add(part, Setting::TypeGroup);
-    parent = &(*parent)[part.c_str()];
-    if (!parent->isGroup()) throw InputError("--set " + path + ": '" + part + "' is not a group");
+    if (part.size() > 2 && part.front() == '[' && part.back() == ']') {  // loads.[0].value: a list element
+      const std::string digits = part.substr(1, part.size() - 2);
+      const bool number = std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); });
+      if (!parent->isList()) throw InputError("--set " + path + ": '" + part + "' indexes a list; the setting before it is not one");
+      if (!number || std::stoul(digits) >= static_cast<unsigned long>(parent->getLength()))
+        throw InputError("--set " + path + ": '" + part + "': the list has " + std::to_string(parent->getLength()) +
+                         " element(s), numbered from 0");
+      parent = &(*parent)[static_cast<int>(std::stoul(digits))];
+    } else {
+      if (!parent->isGroup()) throw InputError("--set " + path + ": '" + part + "' must follow a group");
+      if (!parent->exists(part)) parent->add(part, Setting::TypeGroup);
+      parent = &(*parent)[part.c_str()];
+    }
+    if (!parent->isGroup() && !parent->isList())
+      throw InputError("--set " + path + ": '" + part + "' is not a group or a list");
     start = dot + 1;
   }
+  if (!parent->isGroup())
+    throw InputError("--set " + path + ": a list element is set by its index, e.g. loads.[0].value");
   copy_value(value.lookup("v"), *parent, path.substr(start));
 }
 

@@ -2,13 +2,15 @@
 
 #include "rccm/errors.hpp"
 
+#include <Eigen/Dense>
+
 #include <algorithm>
 #include <sstream>
 
 namespace rccm {
 
-ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs,
-                               std::vector<int> prescribed)
+ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
+                               const std::vector<int>& interface_dofs)
     : prescribed_(std::move(prescribed)), free_index_(K.rows(), -1) {
   std::sort(prescribed_.begin(), prescribed_.end());
   std::vector<char> is_prescribed(K.rows(), 0);
@@ -38,7 +40,12 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
   K0_FD_.resize(nf, nd);
   K0_FD_.setFromTriplets(fd.begin(), fd.end());
 
-  factor_ = std::make_unique<CholmodFactor>(K0_FF);
+  std::vector<int> last;  // the free interface DOFs, among the free DOFs
+  for (int d : interface_dofs)
+    if (free_index_[d] >= 0) last.push_back(free_index_[d]);
+  std::sort(last.begin(), last.end());
+  last.erase(std::unique(last.begin(), last.end()), last.end());
+  factor_ = std::make_unique<CholmodFactor>(K0_FF, last);
   // A floating body gives a zero pivot or, in floating point, a tiny one.
   if (!factor_->ok() || factor_->rcond() < 1e-14) {
     std::ostringstream m;
@@ -47,6 +54,24 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
       << "); add a prescribed displacement on a node set or an interface that holds the body";
     throw InputError(m.str());
   }
+}
+
+Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
+  const std::vector<int>& order = factor_->trailing_order();  // free indices of the interface DOFs
+  std::vector<int> position(free_.size(), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int>(k);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(order.size()), P.rows());  // P_C^T
+  for (int col = 0; col < P.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(P, col); it; ++it) {
+      const int f = free_index_[col];
+      if (f < 0) continue;  // a prescribed DOF: zero displacement under interface forces
+      RCCM_VERIFY(position[f] >= 0, "flexibility(): P reads a DOF that was not ordered last");
+      G(position[f], it.row()) = it.value();
+    }
+  factor_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(P.rows(), P.rows());
+  W.selfadjointView<Eigen::Lower>().rankUpdate(G.transpose());
+  return W.selfadjointView<Eigen::Lower>();
 }
 
 Eigen::MatrixXd ElasticProblem::restrict_free(const Eigen::MatrixXd& full) const {

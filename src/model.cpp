@@ -53,7 +53,9 @@ Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
   g0_ = per_node(cfg.interface.g0, interface_.size());
   loads_ = make_load_cases(mesh_, cfg);
   K_ = assemble_stiffness(mesh_, cfg.material);
-  body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_));
+  std::vector<int> interface_dofs;
+  for (int node : interface_.nodes) interface_dofs.insert(interface_dofs.end(), {2 * node, 2 * node + 1});
+  body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_), interface_dofs);
   condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_);
   D1_.resize(2 * interface_.size());
   for (int i = 0; i < interface_.size(); ++i)

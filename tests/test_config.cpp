@@ -65,6 +65,11 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
                     Catch::Contains("--set interface.Cm: unknown setting; did you mean 'Cn'?"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"interface.mu"}), Catch::Contains("expected path=value"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"interface.mu=[1,"}), Catch::Contains("cannot parse"));
+  // A list element by its index.
+  CHECK(test::config_from_text(good, {"loads.[0].node_set=top"}).loads[0].node_set == "top");
+  CHECK_THROWS_WITH(test::config_from_text(good, {"loads.[7].value=1"}), Catch::Contains("numbered from 0"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"loads.value=1"}), Catch::Contains("e.g. loads.[0].value"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"time.[0].T=1"}), Catch::Contains("not one"));
 }
 
 TEST_CASE("a missing file is named", "[config]") {

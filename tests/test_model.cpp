@@ -3,8 +3,10 @@
 #include "rccm/bipotential_solver.hpp"
 #include "rccm/elasticity.hpp"
 #include "rccm/interface_state.hpp"
+#include "rccm/loads.hpp"
 #include "rccm/model.hpp"
 
+#include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <catch2/catch.hpp>
 
@@ -69,6 +71,34 @@ TEST_CASE("bonded interface equals a direct solve of K plus the interface spring
         CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
         CHECK(s.Rbar.norm() <= 1e-10 * (1 + s.Radh(model.contact_problem(1, model.initial_beta(), s.u.head(1))).norm()));
       }
+}
+
+TEST_CASE("W0 from the Schur complement of the interface DOFs equals P K0^-1 P^T by direct solves", "[model]") {
+  // The mesh rotated by 30 degrees, so that P mixes x and y, and the bottom-left contact
+  // node held in x: its rows of P read a prescribed DOF, which must contribute nothing.
+  const std::string loads =
+      R"({ node_set = "bottom_left"; type = "displacement"; component = "x"; value = 0.0; },
+         { node_set = "top"; type = "traction"; component = "y"; value = 2.0; })";
+  const Config cfg = test::config_from_text(block_config("Q4", "mu = 0.3;", loads), {"mesh.rotation=30"});
+  const Model model(cfg);
+  const SparseMatrix K0 = model.stiffness() + model.interface().initial_springs();
+  const std::vector<int> prescribed = prescribed_dofs(model.loads());
+  REQUIRE(prescribed.size() == 1);
+  std::vector<int> free;  // all DOFs but the prescribed one
+  for (int d = 0; d < K0.rows(); ++d)
+    if (d != prescribed[0]) free.push_back(d);
+  const Eigen::MatrixXd K0d = K0;
+  Eigen::MatrixXd K0_FF(free.size(), free.size()), P_F(model.interface().P.rows(), free.size());
+  const Eigen::MatrixXd P = model.interface().P;
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    P_F.col(a) = P.col(free[a]);
+    for (std::size_t b = 0; b < free.size(); ++b) K0_FF(a, b) = K0d(free[a], free[b]);
+  }
+  const Eigen::MatrixXd W_direct = P_F * K0_FF.ldlt().solve(P_F.transpose());
+  const Eigen::MatrixXd& W0 = model.condensation().W0();
+  CHECK((W0 - W_direct).norm() <= 1e-12 * W_direct.norm());
+  CHECK(W0 == W0.transpose());
+  CHECK(std::abs(P(0, prescribed[0])) > 0.1);  // contact node 0's t row does read the prescribed DOF
 }
 
 TEST_CASE("frictionless block pressed by a uniform pressure: uniform contact pressure", "[model]") {

@@ -1,7 +1,8 @@
 // Elimination of the bulk onto the interface (MODEL.md s4):
 //   u_c = W0 y + q0(t),  W0 = P K0^-1 P^T,  q0(t) = sum_k amplitude_k(t) P U_k,
 // where U_k is the displacement under load case k with the interface forces zero and the
-// springs at beta = 1 (in K0). Built once per run: one CHOLMOD factorization, 2 nc + n_loads solves.
+// springs at beta = 1 (in K0). Built once per run: one CHOLMOD factorization with the interface
+// DOFs last (W0 from its trailing block), n_loads solves.
 #pragma once
 
 #include "rccm/elastic_problem.hpp"
