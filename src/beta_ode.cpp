@@ -30,9 +30,15 @@ BetaOde::BetaOde(const Model& model, const SolverParams& solver, Observer observ
       step_start_(now()) {}
 
 const ContactSolution& BetaOde::solve(double t, const Eigen::VectorXd& beta) {
-  // A stage value may leave [0, 1] by round-off; the interface law is defined inside.
+  // The same (t, beta) again (an accepted step's solve, then the next step's first stage):
+  // the same solution, also after the commit moved the slip reference onto it.
+  if (t == last_t_ && beta == last_beta_) return last_;
   const double start = now();
-  last_ = solve_contact(model_, solver_, t, beta.cwiseMax(0.0).cwiseMin(1.0), committed_);
+  // Started from the latest solution (a nearby stage or, for the accepted step, the same
+  // time), which is closer than the committed one. A stage value may leave [0, 1] by
+  // round-off; the interface law is defined inside.
+  const ContactSolution* from = last_t_ >= committed_.t ? &last_ : nullptr;
+  last_ = solve_contact(model_, solver_, t, beta.cwiseMax(0.0).cwiseMin(1.0), committed_, from);
   const double elapsed = now() - start;
   last_t_ = t;
   last_beta_ = beta;
@@ -55,7 +61,7 @@ const ContactSolution& BetaOde::rhs(double t, const Eigen::VectorXd& beta, Eigen
 }
 
 Eigen::VectorXd BetaOde::jacobian_diagonal(double t, const Eigen::VectorXd& beta) {
-  if (t != last_t_ || beta != last_beta_) solve(t, beta);
+  solve(t, beta);
   const Eigen::VectorXd e = opening_energy(last_);
   Eigen::VectorXd J = Eigen::VectorXd::Zero(size());
   for (int i = 0; i < size(); ++i)

@@ -157,25 +157,40 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
     }
     if (!gauss_seidel)  // the paper's Jacobi form: global update after the sweep
       s.y += params_.relaxation * (y_new - s.y);
-    // Fresh u (Gauss-Seidel: drops the round-off its incremental updates accumulate).
-    s.u.noalias() = W * s.y;
-    s.u += pb.q0;
-    s.Rbar = s.y - E.cwiseProduct(s.u);
 
     // Convergence: relative change of Rbar and the scaled natural-map residual.
-    const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(s.u);
-    const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
-    const double floor = noise_floor() / tol;
-    const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / std::max(F, floor);
-    s.residual = 0;
-    s.worst_node = -1;
-    for (int i = 0; i < nc; ++i) {
-      const Vec2 R = s.Rbar.segment<2>(2 * i);
-      const double level = std::max({R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F, floor});
-      const double r = natural_map(pb, blocks[i], i, R, s.u.segment<2>(2 * i)) / level;
-      if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
+    double change = 0;
+    const auto evaluate = [&]() {
+      s.Rbar = s.y - E.cwiseProduct(s.u);
+      const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(s.u);
+      const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
+      const double floor = noise_floor() / tol;
+      change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / std::max(F, floor);
+      s.residual = 0;
+      s.worst_node = -1;
+      for (int i = 0; i < nc; ++i) {
+        const Vec2 R = s.Rbar.segment<2>(2 * i);
+        const double level = std::max({R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F, floor});
+        const double r = natural_map(pb, blocks[i], i, R, s.u.segment<2>(2 * i)) / level;
+        if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
+      }
+      return change <= tol && s.residual <= tol;
+    };
+    // A fresh u = W0 y + q0 drops the round-off that Gauss-Seidel's incremental updates
+    // accumulate. It reads all of W0, as much as a sweep: done every 8 sweeps and to confirm
+    // convergence (Jacobi has no u without it).
+    const auto refresh = [&]() {
+      s.u.noalias() = W * s.y;
+      s.u += pb.q0;
+    };
+    const bool fresh = !gauss_seidel || s.iterations % 8 == 0;
+    if (fresh) refresh();
+    bool converged = evaluate();
+    if (converged && !fresh) {
+      refresh();
+      converged = evaluate();
     }
-    if (change <= tol && s.residual <= tol) {
+    if (converged) {
       s.converged = true;
       s.Rbar = R_projected;
       break;
@@ -187,7 +202,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
     repeats = pattern == previous_pattern ? repeats + 1 : 0;
     previous_pattern = pattern;
     ++since_exact;
-    if (params_.active_set && repeats >= 1 && (pattern != solved_pattern || since_exact >= 3) &&
+    if (params_.active_set && nc <= params_.active_set_max_nodes && repeats >= 1 && (pattern != solved_pattern || since_exact >= 3) &&
         s.exact_solves < max_exact_solves) {
       if (active_set_.solve(pb, pattern, s.y)) {
         s.u = W * s.y + pb.q0;

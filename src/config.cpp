@@ -411,7 +411,8 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   }
 
   if (const Setting* s = r.optional_group(root, "solver")) {
-    r.only(*s, {"tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation", "active_set"});
+    r.only(*s, {"tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation", "active_set",
+                     "active_set_max_nodes"});
     auto& S = c.solver;
     S.tolerance = r.number(*s, "tolerance", S.tolerance);
     if (s->exists("tolerance"))
@@ -428,6 +429,9 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
     if (s->exists("relaxation"))
       r.check(S.relaxation > 0 && S.relaxation <= 1, (*s)["relaxation"], "must be in (0, 1]", S.relaxation);
     S.active_set = r.boolean(*s, "active_set", S.active_set);
+    S.active_set_max_nodes = r.integer(*s, "active_set_max_nodes", S.active_set_max_nodes);
+    if (s->exists("active_set_max_nodes"))
+      r.check(S.active_set_max_nodes >= 0, (*s)["active_set_max_nodes"], "must be >= 0", S.active_set_max_nodes);
   }
 
   if (const Setting* g = r.optional_group(root, "integrator")) {

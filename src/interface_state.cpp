@@ -31,11 +31,12 @@ void InterfaceState::commit(double time, const Eigen::VectorXd& new_beta, const 
 }
 
 ContactSolution solve_contact(const Model& model, const BipotentialSolver& solver, double t,
-                              const Eigen::VectorXd& beta, const InterfaceState& committed) {
+                              const Eigen::VectorXd& beta, const InterfaceState& committed,
+                              const ContactSolution* start) {
   const ContactProblem pb = model.contact_problem(t, beta, committed.ut());
   ContactSolution s;
   try {
-    s = solver.solve(pb, committed.Rbar, committed.u);
+    s = start ? solver.solve(pb, start->Rbar, start->u) : solver.solve(pb, committed.Rbar, committed.u);
   } catch (const SolveError& e) {
     std::ostringstream m;
     m << "t = " << t << " s: " << e.what();

@@ -26,9 +26,11 @@ struct InterfaceState {
   void commit(double time, const Eigen::VectorXd& new_beta, const ContactSolution& s);
 };
 
-/// One contact solve at (t, beta) from `committed`. Throws SolveError naming t, the
-/// worst node and what to change when it does not converge.
+/// One contact solve at (t, beta), slip measured from `committed`, iterations started from
+/// `start` (default: the committed solution). Throws SolveError naming t, the worst node and
+/// what to change when it does not converge.
 ContactSolution solve_contact(const Model& model, const BipotentialSolver& solver, double t,
-                              const Eigen::VectorXd& beta, const InterfaceState& committed);
+                              const Eigen::VectorXd& beta, const InterfaceState& committed,
+                              const ContactSolution* start = nullptr);
 
 }  // namespace rccm
