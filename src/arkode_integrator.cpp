@@ -40,6 +40,7 @@ struct ArkodeIntegrator::Impl {
   void* mem = nullptr;
   std::string contact_failure;  // the last contact solve that failed, for the final message
   std::string arkode_message;   // ARKODE's own last error message
+  std::unique_ptr<Interrupted> interrupted;  // a stop request met after an accepted step
 
   Impl(BetaOde& o, const Config& cfg) : ode(o) {
     const IntegratorParams& p = cfg.integrator;
@@ -119,6 +120,9 @@ struct ArkodeIntegrator::Impl {
     } catch (const SolveError& e) {
       self->contact_failure = e.what();
       return -1;
+    } catch (const Interrupted& e) {
+      self->interrupted = std::make_unique<Interrupted>(e);
+      return -1;
     }
   }
 
@@ -143,6 +147,7 @@ void ArkodeIntegrator::advance(double t_out) {
   realtype t = m.ode.committed().t;
   const int flag = ARKStepEvolve(m.mem, t_out, m.y, &t, ARK_NORMAL);
   if (flag >= 0) return;
+  if (m.interrupted) throw *m.interrupted;
 
   std::ostringstream msg;
   msg << "ARKODE stopped at t = " << m.ode.committed().t << " s after step " << m.ode.steps() << " ("

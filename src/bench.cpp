@@ -1,5 +1,6 @@
 #include "rccm/bench.hpp"
 
+#include "rccm/atomic_file.hpp"
 #include "rccm/errors.hpp"
 
 #include <cmath>
@@ -127,7 +128,8 @@ void print_growth(std::ostream& out, const std::vector<BenchRow>& rows) {
 }
 
 void write_bench_csv(const std::string& path, const std::vector<BenchRow>& rows) {
-  std::ofstream out(path);
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out << "case,unknowns,contact_nodes,steps,rejected,contact_solves,sweeps_mean,sweeps_max,us_per_solve,"
          "ms_per_step,setup_s,wall_s,peak_rss_mb,paper_s\n";
   for (const BenchRow& row : rows) {
@@ -138,11 +140,12 @@ void write_bench_csv(const std::string& path, const std::vector<BenchRow>& rows)
         << r.solves.max_sweeps << "," << f.us_per_solve << "," << f.ms_per_step << "," << f.setup << "," << f.wall
         << "," << row.peak_rss_mb << "," << row.bench.paper_seconds << "\n";
   }
-  if (!out) throw InputError("bench: cannot write " + path);
+  file.commit();
 }
 
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows) {
-  std::ofstream out(path);
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out << "[\n";
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const BenchRow& row = rows[k];
@@ -157,7 +160,7 @@ void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows
         << ", \"paper_s\": " << row.bench.paper_seconds << "}" << (k + 1 < rows.size() ? "," : "") << "\n";
   }
   out << "]\n";
-  if (!out) throw InputError("bench: cannot write " + path);
+  file.commit();
 }
 
 }  // namespace rccm

@@ -1,5 +1,8 @@
 #include "rccm/beta_ode.hpp"
 
+#include "rccm/errors.hpp"
+#include "rccm/stop_request.hpp"
+
 #include <algorithm>
 #include <chrono>
 
@@ -81,6 +84,10 @@ void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
   if (observer_) observer_({step_, t, t - t_old, committed_, s, r, step_counts_, clock - step_start_});
   step_counts_ = SolveCounts{};
   step_start_ = clock;
+  if (const int signal = stop_signal())
+    throw Interrupted("stopped by signal " + std::to_string(signal) + " after step " + std::to_string(step_) +
+                          " at t = " + std::to_string(t) + " s",
+                      signal);
 }
 
 }  // namespace rccm

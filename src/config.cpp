@@ -491,7 +491,20 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   return c;
 }
 
+/// The line of every setting, by path, for messages after reading (Config::where).
+void record_lines(const Setting& s, std::map<std::string, int>& lines) {
+  if (!s.isRoot()) lines[s.getPath()] = static_cast<int>(s.getSourceLine());
+  if (s.isAggregate())
+    for (int i = 0; i < s.getLength(); ++i) record_lines(s[i], lines);
+}
+
 }  // namespace
+
+std::string Config::where(const std::string& path) const {
+  const auto it = lines.find(path);
+  if (it == lines.end() || it->second == 0) return file + ": " + path;
+  return file + ":" + std::to_string(it->second) + ": " + path;
+}
 
 Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
   libconfig::Config cfg;
@@ -507,7 +520,9 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
   for (const std::string& o : overrides) apply_override(cfg, o);
   Reader reader(path);
   try {
-    return read(reader, cfg.getRoot(), path);
+    Config c = read(reader, cfg.getRoot(), path);
+    record_lines(cfg.getRoot(), c.lines);
+    return c;
   } catch (const libconfig::SettingException& e) {
     throw InputError(path + ": " + e.getPath() + ": " + e.what());
   }

@@ -10,11 +10,11 @@ Interface make_interface(const Mesh& mesh, const InterfaceParams& p) {
   const std::vector<double> a = mesh.tributary_lengths(I.nodes);
   for (std::size_t i = 0; i < a.size(); ++i)
     if (a[i] <= 0)
-      throw InputError("interface.boundary: node set '" + p.boundary +
+      throw InputError("node set '" + p.boundary +
                        "' must be a chain of boundary edges (node " + std::to_string(I.nodes[i]) +
                        " lies on none of its edges)");
   if (I.nodes.empty())
-    throw InputError("interface.boundary: node set '" + p.boundary + "' has no nodes");
+    throw InputError("node set '" + p.boundary + "' has no nodes");
   I.a = Eigen::Map<const Eigen::VectorXd>(a.data(), static_cast<Eigen::Index>(a.size()));
   I.n = Eigen::Vector2d(p.normal[0], p.normal[1]).normalized();
   I.t = Eigen::Vector2d(I.n.y(), -I.n.x());
@@ -32,8 +32,13 @@ Interface make_interface(const Mesh& mesh, const InterfaceParams& p) {
 }
 
 SparseMatrix Interface::initial_springs() const {
+  const Eigen::VectorXd one = Eigen::VectorXd::Ones(size());
+  return springs(one, one);
+}
+
+SparseMatrix Interface::springs(const Eigen::VectorXd& weight_t, const Eigen::VectorXd& weight_n) const {
   Eigen::VectorXd d(2 * size());
-  for (int i = 0; i < size(); ++i) d.segment<2>(2 * i) << a[i] * Ct, a[i] * Cn;
+  for (int i = 0; i < size(); ++i) d.segment<2>(2 * i) << a[i] * Ct * weight_t[i], a[i] * Cn * weight_n[i];
   return SparseMatrix(P.transpose() * d.asDiagonal() * P);
 }
 

@@ -2,6 +2,7 @@
 
 #include "rccm/errors.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace rccm {
@@ -40,6 +41,20 @@ ContactSolution solve_contact(const Model& model, const BipotentialSolver& solve
   } catch (const SolveError& e) {
     std::ostringstream m;
     m << "t = " << t << " s: " << e.what();
+    throw SolveError(m.str());
+  }
+  // A displacement larger than the body itself (or not finite) is no small-strain solution:
+  // the body has come loose (beta = 0 where the load pulls), whatever the residuals say.
+  const double size = std::max(model.config().mesh.size[0], model.config().mesh.size[1]);
+  Eigen::Index worst = 0;
+  const double umax = s.u.cwiseAbs().maxCoeff(&worst);
+  if (!s.u.allFinite() || !s.Rbar.allFinite() || umax > size) {
+    std::ostringstream m;
+    const long debonded = (beta.array() <= 0.0).count();
+    m << "t = " << t << " s: the interface displacement at contact node " << worst / 2 << " is " << umax
+      << " mm, more than the body's size (" << size << " mm): nothing holds the body there (" << debonded << " of "
+      << beta.size() << " contact nodes have beta = 0); restrain it with a prescribed displacement, keep beta0 > 0, "
+         "or reduce the load";
     throw SolveError(m.str());
   }
   if (!s.converged) {

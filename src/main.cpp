@@ -5,6 +5,7 @@
 #include "rccm/config.hpp"
 #include "rccm/errors.hpp"
 #include "rccm/simulation.hpp"
+#include "rccm/stop_request.hpp"
 #include "rccm/sweep.hpp"
 
 #include <CLI/CLI.hpp>
@@ -61,8 +62,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 12));
   bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
       ->check(CLI::PositiveNumber);
-  bool verbose = false;
+  bool verbose = false, force = false;
   run->add_flag("--quiet,-q", quiet, "no progress line");
+  for (CLI::App* sub : {run, sweep})
+    sub->add_flag("--force", force, "overwrite the results of an earlier run in the output directory");
   run->add_flag("--verbose,-v", verbose, "one line per accepted step on stdout");
   compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, fixed")
       ->delimiter(',');
@@ -109,7 +112,8 @@ int main(int argc, char** argv) {
       std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, sweep_dir);
       std::filesystem::create_directories(sweep_dir);
       std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << sweep_dir << "\n";
-      rccm::run_sweep(cases, jobs);
+      rccm::install_stop_handlers();
+      rccm::run_sweep(cases, jobs, force);
       rccm::write_sweep_summary(std::cout, sweep_dir, cases, argv[0], config_file);
       std::cout << "# " << sweep_dir << "/summary.csv, " << sweep_dir << "/jobs.txt; plots: tools/plot --overlay "
                 << sweep_dir << " " << sweep_dir << "/*\n";
@@ -123,6 +127,8 @@ int main(int argc, char** argv) {
       options.step_log = verbose ? &std::cout : nullptr;
       options.progress = !quiet && isatty(fileno(stderr));
       options.write_files = true;
+      options.force = force;
+      rccm::install_stop_handlers();
       const rccm::RunResult r = rccm::Simulation(cfg, options).run();
       print_totals(r);
       std::printf("# results in %s (report.txt, interface_t*.csv, history.csv, curves.csv, results.pvd)\n",
@@ -136,8 +142,12 @@ int main(int argc, char** argv) {
     std::cerr << "rccm: error: " << e.what() << "\n";
     return 2;
   } catch (const rccm::SolveError& e) {
-    std::cerr << "rccm: run failed: " << e.what() << "\n";
+    std::cerr << "rccm: run failed: " << e.what() << "\n  the results up to the last accepted step are in the "
+              << "output directory (report.txt says where it stopped)\n";
     return 3;
+  } catch (const rccm::Interrupted& e) {
+    std::cerr << "rccm: " << e.what() << "; the results up to that step are complete in the output directory\n";
+    return 128 + e.signal;
   } catch (const std::exception& e) {
     std::cerr << "rccm: internal error: " << e.what() << "\n";
     return 1;

@@ -1,17 +1,17 @@
 #include "rccm/result_writer.hpp"
 
+#include "rccm/atomic_file.hpp"
 #include "rccm/errors.hpp"
 
 #include <cstdio>
-#include <filesystem>
-#include <system_error>
+#include <sstream>
 
 namespace rccm {
 
 namespace {
 
 /// Appends ",value" with enough digits to read back what was computed (to 1e-10).
-void cell(std::ofstream& out, double v) {
+void cell(std::ostream& out, double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, ",%.12g", v);
   out << buf;
@@ -36,62 +36,72 @@ std::ofstream open(const std::string& path) {
   return out;
 }
 
+/// Appends one complete line with a single write, so that a reader never sees half of it.
+void write_line(std::ofstream& out, const std::ostringstream& line) {
+  const std::string text = line.str() + "\n";
+  out.write(text.data(), static_cast<std::streamsize>(text.size()));
+  out.flush();
+  if (!out) throw SolveError("cannot append to a result file (disk full?)");
+}
+
 }  // namespace
 
 ResultWriter::ResultWriter(const Model& model, const std::string& directory)
     : model_(model), directory_(directory), vtk_(model, directory) {
-  std::error_code ec;
-  std::filesystem::create_directories(directory, ec);
-  if (ec || !std::filesystem::is_directory(directory))
-    throw InputError(model.config().file + ": output.directory: cannot create '" + directory + "' (" + ec.message() + ")");
   history_ = open(directory + "/history.csv");
   curves_ = open(directory + "/curves.csv");
 
-  history_ << "t [s],dt [s],contact solves,sweeps mean,sweeps max,residual,min beta,stick,slide,separated,"
-              "equilibrium residual,step wall [s]";
+  std::ostringstream h;
+  h << "t [s],dt [s],contact solves,sweeps mean,sweeps max,residual,min beta,stick,slide,separated,"
+       "equilibrium residual,step wall [s]";
   for (const WatchPoint& w : model.config().output.watch)
     for (const char* q : {"beta", "u_n [mm]", "u_t [mm]", "Radh_n [N]", "Radh_t [N]", "Rbar_n [N]", "Rbar_t [N]"})
-      history_ << "," << w.name << " " << q;
-  history_ << "\n";
+      h << "," << w.name << " " << q;
+  write_line(history_, h);
 
-  curves_ << "t [s]";
+  std::ostringstream c;
+  c << "t [s]";
   for (std::size_t k = 0; k < model.config().loads.size(); ++k)
-    curves_ << "," << load_label(model.config(), k) << " value [" << load_unit(model.config().loads[k].kind) << "],"
-            << load_label(model.config(), k) << " force [N]";
-  curves_ << ",external work [N mm],strain energy [N mm],interface free energy change [N mm],"
-             "damage dissipation [N mm],friction dissipation [N mm],normal contact work [N mm],imbalance [N mm]\n";
+    c << "," << load_label(model.config(), k) << " value [" << load_unit(model.config().loads[k].kind) << "],"
+      << load_label(model.config(), k) << " force [N]";
+  c << ",external work [N mm],strain energy [N mm],interface free energy change [N mm],"
+       "damage dissipation [N mm],friction dissipation [N mm],normal contact work [N mm],imbalance [N mm]";
+  write_line(curves_, c);
 }
 
 void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e) {
   int count[3] = {0, 0, 0};
   for (Status x : a.state.status) ++count[static_cast<int>(x)];
-  history_ << a.t;
+  std::ostringstream h;
+  h << a.t;
   for (double v : {a.dt, double(a.counts.contact_solves),
                    double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves), double(a.counts.max_sweeps),
                    a.solution.residual, a.state.beta.minCoeff(), double(count[1]), double(count[2]), double(count[0]),
                    a.residuals.equilibrium, a.cpu_seconds})
-    cell(history_, v);
+    cell(h, v);
   const Interface& I = model_.interface();
   for (int i : model_.watched()) {
     const Vec2 Radh = adhesive_force(I.a[i], a.state.beta[i], I.Ct, I.Cn, a.state.u.segment<2>(2 * i));
     for (double v : {a.state.beta[i], a.state.u[2 * i + 1], a.state.u[2 * i], Radh[1], Radh[0],
                      a.state.Rbar[2 * i + 1], a.state.Rbar[2 * i]})
-      cell(history_, v);
+      cell(h, v);
   }
-  history_ << "\n" << std::flush;
+  write_line(history_, h);
 
-  curves_ << a.t;
-  for (std::size_t k = 0; k < b.value.size(); ++k) cell(curves_, b.value[k]), cell(curves_, b.force[k]);
+  std::ostringstream c;
+  c << a.t;
+  for (std::size_t k = 0; k < b.value.size(); ++k) cell(c, b.value[k]), cell(c, b.force[k]);
   for (double v : {e.external_work, e.strain_energy, e.free_energy_change, e.damage_dissipation,
                    e.friction_dissipation, e.normal_contact_work, e.imbalance()})
-    cell(curves_, v);
-  curves_ << "\n" << std::flush;
+    cell(c, v);
+  write_line(curves_, c);
 }
 
 void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
   char name[64];
   std::snprintf(name, sizeof name, "/interface_t%g.csv", s.t);
-  std::ofstream out = open(directory_ + name);
+  AtomicFile file(directory_ + name);
+  std::ostream& out = file.stream();
   out << "node,x [mm],y [mm],a [mm],t [s],beta,u_n [mm],u_t [mm],Rbar_n [N],Rbar_t [N],Radh_n [N],Radh_t [N],"
          "r_n [N],r_t [N],p_n [MPa],p_t [MPa],status\n";
   const Interface& I = model_.interface();
@@ -104,7 +114,7 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
       cell(out, v);
     out << "," << status_name(s.status[i]) << "\n";
   }
-  if (!out) throw SolveError("cannot write " + directory_ + name);
+  file.commit();
   vtk_.write(s, b);
 }
 

@@ -1,5 +1,6 @@
 #include "rccm/run_report.hpp"
 
+#include "rccm/atomic_file.hpp"
 #include "rccm/errors.hpp"
 
 #include <cstdio>
@@ -44,7 +45,13 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   if (cfg.integrator.method == Method::Arkode)
     out << " (" << (cfg.integrator.scheme == ArkodeScheme::Dirk ? "dirk" : "erk") << ", rtol " << cfg.integrator.rtol
         << ", atol " << cfg.integrator.atol << ")";
-  out << "; alpha = " << cfg.interface.alpha << " N s/mm\n\n";
+  out << "; alpha = " << cfg.interface.alpha << " N s/mm\n";
+  if (r.stopped.empty())
+    out << "status: complete (t = " << cfg.time.T << " s)\n\n";
+  else
+    out << "status: STOPPED before T = " << cfg.time.T << " s, at the last accepted step t = "
+        << (r.snapshots.empty() ? 0.0 : r.snapshots.back().t) << " s (its interface and mesh are written)\n  "
+        << r.stopped << "\n\n";
 
   out << "Work per step (the paper's Table 1 layout)\n";
   const auto cols = table_columns(r);
@@ -110,16 +117,17 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
         << ", \"contact_solves\": " << s.contact_solves << ", \"sweeps_mean\": " << s.sweeps_mean
         << ", \"sweeps_max\": " << s.sweeps_max << ", \"cpu_seconds\": " << s.cpu_seconds << "}";
   }
-  out << "\n  ],\n  \"warnings\": [";
+  out << "\n  ],\n  \"stopped\": " << json_string(r.stopped) << ",\n  \"warnings\": [";
   for (std::size_t k = 0; k < r.warnings.size(); ++k) out << (k ? ", " : "") << json_string(r.warnings[k]);
   out << "]\n}\n";
 }
 
 void write_reports(const std::string& directory, const Config& cfg, const RunResult& r) {
-  std::ofstream txt(directory + "/report.txt"), json(directory + "/report.json");
-  write_report_text(txt, cfg, r);
-  write_report_json(json, cfg, r);
-  if (!txt || !json) throw SolveError("cannot write the report in " + directory);
+  AtomicFile txt(directory + "/report.txt"), json(directory + "/report.json");
+  write_report_text(txt.stream(), cfg, r);
+  write_report_json(json.stream(), cfg, r);
+  txt.commit();
+  json.commit();
 }
 
 }  // namespace rccm

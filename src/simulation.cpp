@@ -2,7 +2,9 @@
 
 #include "rccm/beta_ode.hpp"
 #include "rccm/body_state.hpp"
+#include "rccm/errors.hpp"
 #include "rccm/model.hpp"
+#include "rccm/output_directory.hpp"
 #include "rccm/result_writer.hpp"
 #include "rccm/run_report.hpp"
 
@@ -10,6 +12,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <iostream>
 #include <memory>
 
@@ -63,7 +66,9 @@ RunResult Simulation::run() {
   const auto start = std::chrono::steady_clock::now();
   RunResult result;
 
-  // 1. Set up: mesh, body (K0 factorized once), interface, condensation.
+  // 1. Set up: mesh, body (K0 factorized once), interface, condensation; the output
+  //    directory is checked first, so that a long setup is not wasted.
+  if (options_.write_files) check_output_directory(cfg_, options_.force);
   const Model model(cfg_);
   result.setup_seconds = seconds_since(start);
   result.watched = model.watched();
@@ -77,8 +82,12 @@ RunResult Simulation::run() {
                        << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
 
   // 2. Result files, only now that the input is known to be good.
+  std::unique_ptr<OutputDirectory> directory;
   std::unique_ptr<ResultWriter> writer;
-  if (options_.write_files) writer = std::make_unique<ResultWriter>(model, cfg_.output.directory);
+  if (options_.write_files) {
+    directory = std::make_unique<OutputDirectory>(cfg_);
+    writer = std::make_unique<ResultWriter>(model, directory->path());
+  }
 
   // 3. The beta ODE; each accepted step updates the energy balance, the files and the logs.
   std::unique_ptr<EnergyBalance> energy;
@@ -105,22 +114,38 @@ RunResult Simulation::run() {
   const std::unique_ptr<AdhesionIntegrator> integrator = make_integrator(ode, cfg_);
 
   // 4. Integrate to each output time exactly; write the interface and the mesh there.
-  for (double t_out : stop_times(cfg_)) {
-    integrator->advance(t_out);
+  const auto snapshot = [&]() {
     const InterfaceState& s = ode.committed();
     const double debonded = (s.beta.array() < 0.5).select(model.interface().a.array(), 0.0).sum();
     result.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded});
-    if (writer) writer->output(s, body);  // the last accepted step is the one at t_out
+    if (writer) writer->output(s, body);  // the last accepted step is the one at s.t
+  };
+  // 5. Report (also of a run that stops early, with its last accepted state).
+  const auto report = [&]() {
+    if (options_.progress) std::fputs("\n", stderr);
+    result.integrator = integrator->stats();
+    result.solves = ode.totals();
+    result.energy = energy->terms();
+    result.warnings = integrator->warnings();
+    result.wall_seconds = seconds_since(start);
+    if (writer) write_reports(writer->directory(), cfg_, result);
+  };
+  std::exception_ptr stop;
+  try {
+    for (double t_out : stop_times(cfg_)) {
+      integrator->advance(t_out);
+      snapshot();
+    }
+  } catch (const SolveError& e) {
+    result.stopped = std::string("failed: ") + e.what();
+    stop = std::current_exception();
+  } catch (const Interrupted& e) {
+    result.stopped = e.what();
+    stop = std::current_exception();
   }
-  if (options_.progress) std::fputs("\n", stderr);
-
-  // 5. Report.
-  result.integrator = integrator->stats();
-  result.solves = ode.totals();
-  result.energy = energy->terms();
-  result.warnings = integrator->warnings();
-  result.wall_seconds = seconds_since(start);
-  if (writer) write_reports(writer->directory(), cfg_, result);
+  if (stop && (result.snapshots.empty() || result.snapshots.back().t < ode.committed().t)) snapshot();
+  report();
+  if (stop) std::rethrow_exception(stop);
   return result;
 }
 

@@ -1,5 +1,6 @@
 #include "rccm/sweep.hpp"
 
+#include "rccm/atomic_file.hpp"
 #include "rccm/errors.hpp"
 
 #include <atomic>
@@ -76,12 +77,13 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
   return cases;
 }
 
-void run_sweep(std::vector<SweepCase>& cases, int jobs) {
+void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
     for (std::size_t k = next++; k < cases.size(); k = next++) {
       RunOptions options;
       options.write_files = true;
+      options.force = force;
       try {
         cases[k].result = Simulation(cases[k].config, options).run();
       } catch (const std::exception& e) {
@@ -96,8 +98,8 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs) {
 
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepCase>& cases,
                          const std::string& rccm_path, const std::string& config_file) {
-  std::ofstream csv(directory + "/summary.csv"), jobs(directory + "/jobs.txt");
-  if (!csv || !jobs) throw SolveError("cannot write the sweep summary in " + directory);
+  AtomicFile csv_file(directory + "/summary.csv"), jobs_file(directory + "/jobs.txt");
+  std::ostream &csv = csv_file.stream(), &jobs = jobs_file.stream();
   csv << "case,peak force [N],t at peak [s]";
   out << "case                          peak force [N]  t peak [s]";
   for (const Snapshot& s : cases.front().result.snapshots) {
@@ -131,6 +133,8 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
     for (const std::string& o : c.overrides) jobs << " --set '" << o << "'";
     jobs << " --set 'output.directory=\"" << directory << "/" << c.name << "\"'\n";
   }
+  csv_file.commit();
+  jobs_file.commit();
 }
 
 }  // namespace rccm

@@ -1,5 +1,6 @@
 #include "rccm/vtk_writer.hpp"
 
+#include "rccm/atomic_file.hpp"
 #include "rccm/elasticity.hpp"
 #include "rccm/errors.hpp"
 
@@ -17,7 +18,7 @@ double von_mises(const Eigen::Vector3d& s, double szz) {
   return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * s[2] * s[2]);
 }
 
-void data_array(std::ofstream& out, const char* name, int components, const Eigen::MatrixXd& values) {
+void data_array(std::ostream& out, const char* name, int components, const Eigen::MatrixXd& values) {
   out << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"" << components
       << "\" format=\"ascii\">\n";
   char buf[32];
@@ -65,7 +66,8 @@ void VtkWriter::write(const InterfaceState& s, const BodyState& b) {
   char name[64];
   std::snprintf(name, sizeof name, "mesh_%04zu.vtu", files_.size());
   const std::string path = directory_ + "/" + name;
-  std::ofstream out(path);
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
       << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfCells=\"" << nc << "\">\n<Points>\n";
   data_array(out, "coordinates [mm]", 3, X);
@@ -91,14 +93,15 @@ void VtkWriter::write(const InterfaceState& s, const BodyState& b) {
   data_array(out, "stress (xx, yy, xy) [MPa]", 3, sigma);
   data_array(out, "von Mises [MPa]", 1, vm);
   out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  if (!out) throw SolveError("cannot write " + path);
-  out.close();
+  file.commit();
 
   files_.emplace_back(s.t, name);
-  std::ofstream pvd(directory_ + "/results.pvd");
+  AtomicFile collection(directory_ + "/results.pvd");
+  std::ostream& pvd = collection.stream();
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const auto& [t, file] : files_) pvd << "<DataSet timestep=\"" << t << "\" file=\"" << file << "\"/>\n";
   pvd << "</Collection>\n</VTKFile>\n";
+  collection.commit();
 }
 
 }  // namespace rccm

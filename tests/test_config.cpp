@@ -3,6 +3,7 @@
 #include "helpers.hpp"
 #include "rccm/errors.hpp"
 #include "rccm/model.hpp"
+#include "rccm/output_directory.hpp"
 
 #include <catch2/catch.hpp>
 
@@ -35,7 +36,11 @@ TEST_CASE("every bad config is refused with file, line and setting", "[config]")
     REQUIRE(first.rfind("# expect: ", 0) == 0);
     const std::string expect = first.substr(10);
     INFO(entry.path().filename().string());
-    const auto build = [&]() { Model model(load_config(entry.path().string())); };
+    const auto build = [&]() {  // what `rccm run` does before writing anything
+      const Config c = load_config(entry.path().string());
+      check_output_directory(c, false);
+      Model model(c);
+    };
     CHECK_THROWS_AS(build(), InputError);
     CHECK_THROWS_WITH(build(), Catch::Contains(expect) && Catch::Contains(entry.path().string()));
     ++count;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <array>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -116,6 +117,11 @@ struct OutputParams {
 
 struct Config {
   std::string file;  // path it was read from
+  std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
+
+  /// "file:line: path" for messages about a setting found wrong after reading (a list of
+  /// the wrong length once the mesh is known, an unwritable directory).
+  std::string where(const std::string& path) const;
   MeshParams mesh;
   MaterialParams material;
   InterfaceParams interface;

@@ -3,6 +3,7 @@
 // Exit statuses of the rccm executable follow the error type:
 //   InputError  -> 2  (bad config, bad command line: nothing was run or written)
 //   SolveError  -> 3  (a run that could not go on: it says where and what to change)
+//   Interrupted -> 128 + signal (SIGINT 130, SIGTERM 143: stopped cleanly at an accepted step)
 #pragma once
 
 #include <stdexcept>
@@ -18,6 +19,12 @@ struct InputError : std::runtime_error {
 /// A solve that failed: the message names time, step, node and a suggestion.
 struct SolveError : std::runtime_error {
   using std::runtime_error::runtime_error;
+};
+
+/// A run stopped at an accepted step because SIGINT or SIGTERM asked it to (StopRequest).
+struct Interrupted : std::runtime_error {
+  Interrupted(const std::string& what, int signal) : std::runtime_error(what), signal(signal) {}
+  int signal;
 };
 
 /// A broken internal invariant (a bug in rccm, not in the input).

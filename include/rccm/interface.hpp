@@ -24,6 +24,10 @@ struct Interface {
 
   /// Interface springs at beta = 1 as a global matrix, P^T diag(a_i Ct, a_i Cn) P (MODEL.md s4).
   SparseMatrix initial_springs() const;
+
+  /// P^T diag(a_i Ct w_t,i, a_i Cn w_n,i) P: springs of per-node weights (w = beta^2: the
+  /// adhesive springs at beta).
+  SparseMatrix springs(const Eigen::VectorXd& weight_t, const Eigen::VectorXd& weight_n) const;
 };
 
 /// Builds the interface on the node set `p.boundary`; throws InputError if it has no edge.

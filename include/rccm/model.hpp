@@ -45,6 +45,9 @@ class Model {
   const std::vector<LoadCase>& loads() const { return loads_; }
 
  private:
+  /// Throws InputError when no contact state can hold the body (a frictionless, unbonded interface).
+  void check_restrained(const Config& cfg, const Eigen::VectorXd& beta0) const;
+
   Config cfg_;
   Mesh mesh_;
   Interface interface_;

@@ -3,7 +3,8 @@
 //   history.csv            watched points and solver work at every accepted step
 //   curves.csv             each load's value and resultant force, and the energy terms
 //   mesh_<k>.vtu, results.pvd   ParaView
-// Every file is complete (flushed) after each accepted step or output time.
+// The CSV streams grow by one complete line per accepted step (one write each); the other
+// files are written whole under a temporary name and renamed (AtomicFile).
 #pragma once
 
 #include "rccm/beta_ode.hpp"
@@ -19,7 +20,7 @@ namespace rccm {
 
 class ResultWriter {
  public:
-  /// Creates the directory (InputError if it cannot) and writes the CSV headers.
+  /// Writes the CSV headers into `directory` (created and locked by the caller).
   ResultWriter(const Model& model, const std::string& directory);
 
   void step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e);

@@ -40,6 +40,7 @@ struct RunResult {
   std::vector<double> peak_force;   // per load: largest |resultant force| over the run, N
   std::vector<double> peak_time;    // per load: when it occurred, s
   std::vector<std::string> warnings;
+  std::string stopped;              // why the run ended before T (failure, signal); empty: complete
   int nodes = 0, cells = 0, contact_nodes = 0, dofs = 0;
   double setup_seconds = 0, wall_seconds = 0;
 };
@@ -48,6 +49,7 @@ struct RunOptions {
   std::ostream* step_log = nullptr;  // one line per accepted step
   bool progress = false;             // one updating line on stderr
   bool write_files = false;          // results in output.directory
+  bool force = false;                // overwrite the results of an earlier run there
   BetaOde::Observer observer;        // called after each accepted step (tests)
 };
 
@@ -55,7 +57,8 @@ class Simulation {
  public:
   Simulation(const Config& cfg, RunOptions options = {}) : cfg_(cfg), options_(std::move(options)) {}
 
-  /// Runs the whole problem; throws InputError (bad model: nothing written) or SolveError.
+  /// Runs the whole problem; throws InputError (bad model: nothing written), SolveError or
+  /// Interrupted (the files then hold every accepted step, the last state and the report).
   RunResult run();
 
  private:

@@ -36,8 +36,8 @@ void split_sweep_settings(const std::vector<std::string>& items, std::vector<Swe
 std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const std::vector<std::string>& fixed,
                                         const std::vector<SweepAxis>& axes, const std::string& directory);
 
-/// Runs the cases on `jobs` threads, each writing into its directory.
-void run_sweep(std::vector<SweepCase>& cases, int jobs);
+/// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier results).
+void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
 /// summary.csv and jobs.txt in `directory`, and the table on `out`.
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepCase>& cases,

@@ -1,0 +1,16 @@
+// SIGINT and SIGTERM ask a run to stop: the handler only records the request, and the run
+// stops at its next accepted step with complete files (BetaOde::accept throws Interrupted).
+#pragma once
+
+namespace rccm {
+
+/// Installs the handlers of SIGINT and SIGTERM (rccm run and sweep).
+void install_stop_handlers();
+
+/// The signal that asked to stop, or 0.
+int stop_signal();
+
+/// Asks to stop as the signal `signal` would (tests); 0 withdraws the request.
+void request_stop(int signal);
+
+}  // namespace rccm
