@@ -506,17 +506,10 @@ std::string Config::where(const std::string& path) const {
   return file + ":" + std::to_string(it->second) + ": " + path;
 }
 
-Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
-  libconfig::Config cfg;
-  cfg.setAutoConvert(true);
-  try {
-    cfg.readFile(path.c_str());
-  } catch (const libconfig::FileIOException&) {
-    throw InputError(path + ": cannot read the file (does it exist?)");
-  } catch (const libconfig::ParseException& e) {
-    throw InputError(std::string(e.getFile() ? e.getFile() : path.c_str()) + ":" +
-                     std::to_string(e.getLine()) + ": syntax error: " + syntax_hint(e.getError()));
-  }
+namespace {
+
+/// Overrides, then the checked read, of a parsed libconfig tree.
+Config finish(libconfig::Config& cfg, const std::string& path, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) apply_override(cfg, o);
   Reader reader(path);
   try {
@@ -526,6 +519,37 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
   } catch (const libconfig::SettingException& e) {
     throw InputError(path + ": " + e.getPath() + ": " + e.what());
   }
+}
+
+InputError syntax_error(const libconfig::ParseException& e, const std::string& path) {
+  return InputError(std::string(e.getFile() ? e.getFile() : path.c_str()) + ":" + std::to_string(e.getLine()) +
+                    ": syntax error: " + syntax_hint(e.getError()));
+}
+
+}  // namespace
+
+Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
+  libconfig::Config cfg;
+  cfg.setAutoConvert(true);
+  try {
+    cfg.readFile(path.c_str());
+  } catch (const libconfig::FileIOException&) {
+    throw InputError(path + ": cannot read the file (does it exist?)");
+  } catch (const libconfig::ParseException& e) {
+    throw syntax_error(e, path);
+  }
+  return finish(cfg, path, overrides);
+}
+
+Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  libconfig::Config cfg;
+  cfg.setAutoConvert(true);
+  try {
+    cfg.readString(text);
+  } catch (const libconfig::ParseException& e) {
+    throw syntax_error(e, name);
+  }
+  return finish(cfg, name, overrides);
 }
 
 }  // namespace rccm

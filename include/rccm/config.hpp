@@ -134,6 +134,9 @@ struct Config {
 
 const char* method_name(Method m);
 
+/// The same from the text of a config (`name` stands for the file in messages).
+Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {});
+
 /// Reads and checks a config file; `overrides` are "path=value" strings (the
 /// command line's --set). Throws InputError "file:line: setting: what is wrong".
 Config load_config(const std::string& path, const std::vector<std::string>& overrides = {});
