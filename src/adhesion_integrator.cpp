@@ -8,6 +8,11 @@
 
 namespace rccm {
 
+IntegratorStats operator+(const IntegratorStats& a, const IntegratorStats& b) {
+  return {a.steps + b.steps, a.rejected + b.rejected, a.rhs_evaluations + b.rhs_evaluations,
+          a.newton_iterations + b.newton_iterations};
+}
+
 FixedStepIntegrator::FixedStepIntegrator(BetaOde& ode, const Config& cfg) : ode_(ode), grid_(time_grid(cfg)) {}
 
 void FixedStepIntegrator::advance(double t_out) {
@@ -15,6 +20,7 @@ void FixedStepIntegrator::advance(double t_out) {
   for (double t : grid_) {
     if (t <= ode_.committed().t + eps) continue;
     if (t > t_out + eps) break;
+    last_step_ = t - ode_.committed().t;
     step(t);
     ++stats_.steps;
   }

@@ -169,6 +169,12 @@ void ArkodeIntegrator::advance(double t_out) {
   throw SolveError(msg.str());
 }
 
+double ArkodeIntegrator::last_step() const {
+  realtype h = 0;
+  ARKStepGetLastStep(impl_->mem, &h);
+  return h;
+}
+
 IntegratorStats ArkodeIntegrator::stats() const {
   const Impl& m = *impl_;
   IntegratorStats s;

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <sstream>
 
 namespace rccm {
 
@@ -41,7 +43,11 @@ const ContactSolution& BetaOde::solve(double t, const Eigen::VectorXd& beta) {
   // time), which is closer than the committed one. A stage value may leave [0, 1] by
   // round-off; the interface law is defined inside.
   const ContactSolution* from = last_t_ >= committed_.t ? &last_ : nullptr;
-  last_ = solve_contact(model_, solver_, t, beta.cwiseMax(0.0).cwiseMin(1.0), committed_, from);
+  try {
+    last_ = solve_contact(model_, solver_, t, beta.cwiseMax(0.0).cwiseMin(1.0), committed_, from);
+  } catch (const SolveError& e) {
+    throw SolveError("step " + std::to_string(step_ + 1) + ", " + e.what());
+  }
   const double elapsed = now() - start;
   last_t_ = t;
   last_beta_ = beta;
@@ -56,7 +62,19 @@ Eigen::VectorXd BetaOde::opening_energy(const ContactSolution& s) const {
   return e;
 }
 
+void BetaOde::check_beta(double t, const Eigen::VectorXd& beta, const char* what) const {
+  for (int i = 0; i < size(); ++i)
+    if (!std::isfinite(beta[i]) || beta[i] < -beta_slack || beta[i] > 1 + beta_slack) {
+      std::ostringstream m;
+      m << "step " << step_ + 1 << ", t = " << t << " s: " << what << " beta at contact node " << i << " is "
+        << beta[i] << ", outside [0, 1]: the integrator overshot (its step was too large for the damage rate); "
+        << "with ARKODE the step is cut, otherwise tighten integrator.rtol or use scheme = \"dirk\"";
+      throw SolveError(m.str());
+    }
+}
+
 const ContactSolution& BetaOde::rhs(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> f) {
+  check_beta(t, beta, "the stage value of");
   const ContactSolution& s = solve(t, beta);
   for (int i = 0; i < size(); ++i)
     f[i] = beta_rate(beta[i], s.u.segment<2>(2 * i), Ct_, Cn_, w_, alpha_);  // MODEL.md s6
@@ -72,8 +90,19 @@ Eigen::VectorXd BetaOde::jacobian_diagonal(double t, const Eigen::VectorXd& beta
   return J;
 }
 
+void BetaOde::resume(const InterfaceState& state, int step, const SolveCounts& totals) {
+  RCCM_VERIFY(state.beta.size() == size(), "checkpoint of another interface");
+  committed_ = state;
+  step_ = step;
+  totals_ = totals;
+  last_t_ = -1;
+}
+
 void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
-  // beta in [0, 1] and never increasing (MODEL.md s6), whatever the scheme's round-off.
+  // beta in [0, 1] and never increasing (MODEL.md s6), whatever the scheme's round-off; a
+  // NaN or Inf is no round-off.
+  for (int i = 0; i < size(); ++i)
+    if (!std::isfinite(beta[i])) check_beta(t, beta, "the accepted");
   beta = beta.cwiseMax(0.0).cwiseMin(committed_.beta);
   const double t_old = committed_.t;
   const ContactSolution& s = solve(t, beta);

@@ -9,6 +9,9 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
 #include <initializer_list>
 #include <sstream>
 
@@ -394,6 +397,7 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   if (!root.exists("loads")) r.fail(root, "missing section 'loads'");
   const Setting& loads = root["loads"];
   if (!loads.isList()) r.fail(loads, "must be a list ( { node_set = ...; type = ...; ... }, ... )");
+  if (loads.getLength() == 0) r.fail(loads, "must hold at least one load (with none, nothing moves)");
   for (int i = 0; i < loads.getLength(); ++i) {
     const Setting& l = loads[i];
     if (!l.isGroup()) r.fail(l, "must be a group { node_set = ...; type = ...; component = ...; value = ...; }");
@@ -469,7 +473,11 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
                "\" (got " + std::to_string(c.interface.alpha) + "); alpha = 0 is method \"rate-independent\"");
 
   if (const Setting* o = r.optional_group(root, "output")) {
-    r.only(*o, {"directory", "times", "watch"});
+    r.only(*o, {"directory", "times", "watch", "checkpoint_steps"});
+    c.output.checkpoint_steps = r.integer(*o, "checkpoint_steps", c.output.checkpoint_steps);
+    if (o->exists("checkpoint_steps"))
+      r.check(c.output.checkpoint_steps >= 0, (*o)["checkpoint_steps"],
+              "must be >= 0 (0: a checkpoint only when the run stops)", c.output.checkpoint_steps);
     c.output.directory = r.text(*o, "directory", c.output.directory);
     if (c.output.directory.empty()) r.fail((*o)["directory"], "must not be empty");
     if (o->exists("times")) {
@@ -508,6 +516,34 @@ std::string Config::where(const std::string& path) const {
 
 namespace {
 
+/// FNV-1a of "path=value" of every scalar setting but those that do not shape the results.
+std::string settings_fingerprint(const Setting& root) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto mix = [&h](const std::string& text) {
+    for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+  };
+  const std::function<void(const Setting&)> visit = [&](const Setting& s) {
+    if (s.isAggregate()) {
+      for (int i = 0; i < s.getLength(); ++i) visit(s[i]);
+      return;
+    }
+    const std::string path = s.getPath();
+    if (path == "output.directory" || path == "output.checkpoint_steps") return;
+    char value[64];
+    switch (s.getType()) {
+      case Setting::TypeFloat: std::snprintf(value, sizeof value, "%a", double(s)); break;
+      case Setting::TypeString: mix(path + "=" + s.c_str() + ";"); return;
+      case Setting::TypeBoolean: std::snprintf(value, sizeof value, "%d", bool(s) ? 1 : 0); break;
+      default: std::snprintf(value, sizeof value, "%lld", static_cast<long long>(s)); break;
+    }
+    mix(path + "=" + value + ";");
+  };
+  visit(root);
+  char out[20];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
 /// Overrides, then the checked read, of a parsed libconfig tree.
 Config finish(libconfig::Config& cfg, const std::string& path, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) apply_override(cfg, o);
@@ -515,6 +551,7 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
   try {
     Config c = read(reader, cfg.getRoot(), path);
     record_lines(cfg.getRoot(), c.lines);
+    c.settings = settings_fingerprint(cfg.getRoot());
     return c;
   } catch (const libconfig::SettingException& e) {
     throw InputError(path + ": " + e.getPath() + ": " + e.what());

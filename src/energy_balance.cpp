@@ -25,6 +25,12 @@ double EnergyBalance::free_energy(const InterfaceState& s) const {
   return psi;
 }
 
+void EnergyBalance::resume(const InterfaceState& s, const BodyState& b, const EnergyTerms& terms) {
+  previous_ = s;
+  previous_body_ = b;
+  terms_ = terms;
+}
+
 void EnergyBalance::add(const InterfaceState& s, const BodyState& b) {
   const Interface& I = model_.interface();
   const double w = model_.config().interface.w;

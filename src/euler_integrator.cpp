@@ -35,6 +35,12 @@ void EulerIntegrator::take_step(double t_new) {
   ode_.accept(t_new, beta);  // clamps to [0, beta_n], re-solves and commits
 }
 
+void EulerIntegrator::restore(const std::vector<double>& d) {
+  RCCM_VERIFY(d.size() == 2, "Euler diagnostics: max ratio and clamped count");
+  max_ratio_ = d[0];
+  clamped_ = static_cast<long>(d[1]);
+}
+
 std::vector<std::string> EulerIntegrator::warnings() const {
   if (max_ratio_ <= 2 && clamped_ == 0) return {};
   std::ostringstream m;
@@ -42,7 +48,7 @@ std::vector<std::string> EulerIntegrator::warnings() const {
     << " (stable below 2)";
   if (clamped_ > 0) m << " and beta was clamped to 0 at " << clamped_ << " node-steps";
   m << "; beta is not time-accurate. Use integrator.method = \"arkode\", or at least "
-    << static_cast<long>(std::ceil(stats_.steps * max_ratio_ / 2)) << " steps (time.steps)";
+    << static_cast<long>(std::ceil(ode_.steps() * max_ratio_ / 2)) << " steps (time.steps)";
   return {m.str()};
 }
 

@@ -67,6 +67,10 @@ int main(int argc, char** argv) {
   for (CLI::App* sub : {run, sweep})
     sub->add_flag("--force", force, "overwrite the results of an earlier run in the output directory");
   run->add_flag("--verbose,-v", verbose, "one line per accepted step on stdout");
+  std::string restart_dir;
+  run->add_option("--restart", restart_dir,
+                  "go on from the checkpoint of an interrupted or failed run of the same config in DIR")
+      ->excludes("--force");
   compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, fixed")
       ->delimiter(',');
   compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
@@ -121,6 +125,8 @@ int main(int argc, char** argv) {
         if (!c.error.empty()) return 3;
       return 0;
     }
+    // A restart writes where the run it continues wrote (a --set of the directory is the same).
+    if (!restart_dir.empty()) overrides.push_back("output.directory=\"" + restart_dir + "\"");
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (*run) {
       rccm::RunOptions options;
@@ -128,6 +134,7 @@ int main(int argc, char** argv) {
       options.progress = !quiet && isatty(fileno(stderr));
       options.write_files = true;
       options.force = force;
+      options.restart = !restart_dir.empty();
       rccm::install_stop_handlers();
       const rccm::RunResult r = rccm::Simulation(cfg, options).run();
       print_totals(r);

@@ -3,7 +3,11 @@
 #include "rccm/atomic_file.hpp"
 #include "rccm/errors.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <sstream>
 
 namespace rccm {
@@ -30,10 +34,30 @@ const char* load_unit(LoadKind kind) {
   }
 }
 
-std::ofstream open(const std::string& path) {
-  std::ofstream out(path);
+std::ofstream open(const std::string& path, std::ios::openmode mode = std::ios::out) {
+  std::ofstream out(path, mode);
   if (!out) throw InputError("output.directory: cannot write " + path);
   return out;
+}
+
+std::string interface_file(double t) {
+  char name[64];
+  std::snprintf(name, sizeof name, "interface_t%g.csv", t);
+  return name;
+}
+
+/// Keeps the header and the complete lines of a CSV stream up to time t (its first field).
+void keep_lines_until(const std::string& path, double t) {
+  std::ifstream in(path);
+  std::string header, line;
+  std::getline(in, header);
+  const auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ','); };
+  AtomicFile file(path);
+  file.stream() << header << "\n";
+  const double eps = 1e-9 * std::max(1.0, std::abs(t));
+  while (std::getline(in, line) && fields(line) == fields(header) && std::strtod(line.c_str(), nullptr) <= t + eps)
+    file.stream() << line << "\n";
+  file.commit();
 }
 
 /// Appends one complete line with a single write, so that a reader never sees half of it.
@@ -46,8 +70,23 @@ void write_line(std::ofstream& out, const std::ostringstream& line) {
 
 }  // namespace
 
-ResultWriter::ResultWriter(const Model& model, const std::string& directory)
+ResultWriter::ResultWriter(const Model& model, const std::string& directory, const ResumePoint* resume)
     : model_(model), directory_(directory), vtk_(model, directory) {
+  if (resume) {
+    keep_lines_until(directory + "/history.csv", resume->t);
+    keep_lines_until(directory + "/curves.csv", resume->t);
+    history_ = open(directory + "/history.csv", std::ios::app);
+    curves_ = open(directory + "/curves.csv", std::ios::app);
+    std::vector<std::string> keep;
+    for (double t : resume->output_times) keep.push_back(interface_file(t));
+    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+      const std::string name = entry.path().filename().string();
+      if (name.rfind("interface_t", 0) == 0 && std::find(keep.begin(), keep.end(), name) == keep.end())
+        std::filesystem::remove(entry.path());
+    }
+    vtk_.resume(resume->output_times);
+    return;
+  }
   history_ = open(directory + "/history.csv");
   curves_ = open(directory + "/curves.csv");
 
@@ -98,9 +137,7 @@ void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyT
 }
 
 void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
-  char name[64];
-  std::snprintf(name, sizeof name, "/interface_t%g.csv", s.t);
-  AtomicFile file(directory_ + name);
+  AtomicFile file(directory_ + "/" + interface_file(s.t));
   std::ostream& out = file.stream();
   out << "node,x [mm],y [mm],a [mm],t [s],beta,u_n [mm],u_t [mm],Rbar_n [N],Rbar_t [N],Radh_n [N],Radh_t [N],"
          "r_n [N],r_t [N],p_n [MPa],p_t [MPa],status\n";

@@ -2,6 +2,7 @@
 
 #include "rccm/beta_ode.hpp"
 #include "rccm/body_state.hpp"
+#include "rccm/checkpoint.hpp"
 #include "rccm/errors.hpp"
 #include "rccm/model.hpp"
 #include "rccm/output_directory.hpp"
@@ -67,8 +68,11 @@ RunResult Simulation::run() {
   RunResult result;
 
   // 1. Set up: mesh, body (K0 factorized once), interface, condensation; the output
-  //    directory is checked first, so that a long setup is not wasted.
-  if (options_.write_files) check_output_directory(cfg_, options_.force);
+  //    directory (or the checkpoint to restart from) is checked first, so that a long setup
+  //    is not wasted.
+  std::unique_ptr<Checkpoint> resume;
+  if (options_.restart) resume = std::make_unique<Checkpoint>(read_checkpoint(cfg_.output.directory, cfg_));
+  else if (options_.write_files) check_output_directory(cfg_, options_.force);
   const Model model(cfg_);
   result.setup_seconds = seconds_since(start);
   result.watched = model.watched();
@@ -81,17 +85,38 @@ RunResult Simulation::run() {
                        << result.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
                        << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
 
-  // 2. Result files, only now that the input is known to be good.
+  // 2. Result files, only now that the input is known to be good; a restart takes up the
+  //    files of the run it continues at the checkpoint.
   std::unique_ptr<OutputDirectory> directory;
   std::unique_ptr<ResultWriter> writer;
   if (options_.write_files) {
     directory = std::make_unique<OutputDirectory>(cfg_);
-    writer = std::make_unique<ResultWriter>(model, directory->path());
+    ResumePoint point;
+    if (resume) {
+      point.t = resume->state.t;
+      for (const Snapshot& s : resume->progress.snapshots) point.output_times.push_back(s.t);
+    }
+    writer = std::make_unique<ResultWriter>(model, directory->path(), resume ? &point : nullptr);
   }
 
-  // 3. The beta ODE; each accepted step updates the energy balance, the files and the logs.
+  // 3. The beta ODE; each accepted step updates the energy balance, the files and the logs,
+  //    and every output.checkpoint_steps steps a checkpoint.
   std::unique_ptr<EnergyBalance> energy;
   BodyState body;  // of the last accepted step
+  std::unique_ptr<AdhesionIntegrator> integrator;
+  IntegratorStats earlier;                // counts of the run a restart continues
+  const auto save_checkpoint = [&](const BetaOde& ode) {
+    Checkpoint c{cfg_.settings, ode.steps(), integrator->last_step(), ode.committed(), energy->terms(),
+                 integrator->diagnostics(), {}};
+    c.progress.snapshots = result.snapshots;
+    c.progress.steps = result.steps;
+    c.progress.peak_force = result.peak_force;
+    c.progress.peak_time = result.peak_time;
+    c.progress.solves = ode.totals();
+    c.progress.integrator = earlier + integrator->stats();
+    c.progress.integrator.steps = ode.steps();  // also inside a step, before the scheme counts it
+    write_checkpoint(writer->directory(), c);
+  };
   BetaOde ode(model, cfg_.solver, [&](const AcceptedStep& a) {
     body = body_state(model, a.state);
     if (!energy) energy = std::make_unique<EnergyBalance>(model, a.state, body);
@@ -107,11 +132,32 @@ RunResult Simulation::run() {
     if (writer) writer->step(a, body, energy->terms());
     if (options_.step_log) log_step(*options_.step_log, a);
     if (options_.progress) progress_line(a, cfg_.time.T);
+    if (writer && integrator && cfg_.output.checkpoint_steps > 0 && a.step % cfg_.output.checkpoint_steps == 0)
+      save_checkpoint(ode);
     if (options_.observer) options_.observer(a);
   });
-  Eigen::VectorXd beta0 = model.initial_beta();
-  ode.accept(0.0, beta0);
-  const std::unique_ptr<AdhesionIntegrator> integrator = make_integrator(ode, cfg_);
+  IntegratorParams integration = cfg_.integrator;
+  if (resume) {
+    const InterfaceState initial = InterfaceState::initial(model);
+    energy = std::make_unique<EnergyBalance>(model, initial, body_state(model, initial));
+    ode.resume(resume->state, resume->step, resume->progress.solves);
+    body = body_state(model, resume->state);
+    energy->resume(resume->state, body, resume->energy);
+    result.snapshots = resume->progress.snapshots;
+    result.steps = resume->progress.steps;
+    result.peak_force = resume->progress.peak_force;
+    result.peak_time = resume->progress.peak_time;
+    earlier = resume->progress.integrator;
+    // ARKODE begins again where it was: with the last accepted step size, not an estimate.
+    if (integration.initial_step == 0) integration.initial_step = resume->last_step;
+  } else {
+    Eigen::VectorXd beta0 = model.initial_beta();
+    ode.accept(0.0, beta0);
+  }
+  Config integrator_config = cfg_;
+  integrator_config.integrator = integration;
+  integrator = make_integrator(ode, integrator_config);
+  if (resume) integrator->restore(resume->diagnostics);
 
   // 4. Integrate to each output time exactly; write the interface and the mesh there.
   const auto snapshot = [&]() {
@@ -123,7 +169,7 @@ RunResult Simulation::run() {
   // 5. Report (also of a run that stops early, with its last accepted state).
   const auto report = [&]() {
     if (options_.progress) std::fputs("\n", stderr);
-    result.integrator = integrator->stats();
+    result.integrator = earlier + integrator->stats();
     result.solves = ode.totals();
     result.energy = energy->terms();
     result.warnings = integrator->warnings();
@@ -133,7 +179,10 @@ RunResult Simulation::run() {
   std::exception_ptr stop;
   try {
     for (double t_out : stop_times(cfg_)) {
-      integrator->advance(t_out);
+      const double eps = 1e-12 * cfg_.time.T;
+      const bool reached = t_out <= ode.committed().t + eps;  // before a restart's checkpoint
+      if (reached && !result.snapshots.empty() && result.snapshots.back().t >= t_out - eps) continue;
+      if (!reached) integrator->advance(t_out);
       snapshot();
     }
   } catch (const SolveError& e) {
@@ -143,6 +192,8 @@ RunResult Simulation::run() {
     result.stopped = e.what();
     stop = std::current_exception();
   }
+  // The restart point: the last accepted state, before a stopped run's extra snapshot of it.
+  if (writer) save_checkpoint(ode);
   if (stop && (result.snapshots.empty() || result.snapshots.back().t < ode.committed().t)) snapshot();
   report();
   if (stop) std::rethrow_exception(stop);

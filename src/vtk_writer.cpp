@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 
 namespace rccm {
@@ -63,8 +64,7 @@ void VtkWriter::write(const InterfaceState& s, const BodyState& b) {
   for (Eigen::Index c = 0; c < nc; ++c)
     vm(0, c) = von_mises(sigma.col(c), mat.hypothesis == Hypothesis::PlaneStrain ? mat.nu * (sigma(0, c) + sigma(1, c)) : 0.0);
 
-  char name[64];
-  std::snprintf(name, sizeof name, "mesh_%04zu.vtu", files_.size());
+  const std::string name = file_name(files_.size());
   const std::string path = directory_ + "/" + name;
   AtomicFile file(path);
   std::ostream& out = file.stream();
@@ -96,12 +96,30 @@ void VtkWriter::write(const InterfaceState& s, const BodyState& b) {
   file.commit();
 
   files_.emplace_back(s.t, name);
+  write_collection();
+}
+
+std::string VtkWriter::file_name(std::size_t k) {
+  char name[64];
+  std::snprintf(name, sizeof name, "mesh_%04zu.vtu", k);
+  return name;
+}
+
+void VtkWriter::write_collection() const {
   AtomicFile collection(directory_ + "/results.pvd");
   std::ostream& pvd = collection.stream();
   pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
   for (const auto& [t, file] : files_) pvd << "<DataSet timestep=\"" << t << "\" file=\"" << file << "\"/>\n";
   pvd << "</Collection>\n</VTKFile>\n";
   collection.commit();
+}
+
+void VtkWriter::resume(const std::vector<double>& times) {
+  files_.clear();
+  for (double t : times) files_.emplace_back(t, file_name(files_.size()));
+  for (std::size_t k = files_.size(); std::filesystem::exists(directory_ + "/" + file_name(k)); ++k)
+    std::filesystem::remove(directory_ + "/" + file_name(k));
+  write_collection();
 }
 
 }  // namespace rccm

@@ -3,7 +3,10 @@
 #  1. a run that fails (the body comes loose): exit 3, a report saying STOPPED, complete CSV lines;
 #  2. SIGINT and SIGTERM: exit 130 / 143 at an accepted step, the files complete up to it;
 #  3. a second run into a directory holding results: exit 2 and nothing touched; --force reruns;
-#  4. two runs at once into one directory: the second is refused (exit 2).
+#  4. two runs at once into one directory: the second is refused (exit 2);
+#  5. a run killed outright (SIGKILL) and restarted from its last checkpoint (--restart) ends
+#     with the files of an uninterrupted run (fixed steps: the same numbers to round-off, 1e-9
+#     of each column's largest value; the text columns equal).
 set -u
 rccm=$1; src=$2
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
@@ -12,6 +15,20 @@ fail() { echo "FAIL $*"; failed=$((failed + 1)); }
 # Every line of a CSV has the header's number of fields (no half line).
 complete_csv() {
   awk -F, 'NR == 1 { n = NF } NF != n { bad = 1 } END { exit bad }' "$1"
+}
+# Two CSV files with the same lines, the same text fields, and numbers that agree to
+# 1e-9 of each column's largest magnitude.
+same_csv() {
+  [ "$(wc -l < "$1")" = "$(wc -l < "$2")" ] || return 1
+  awk -F, 'NR == FNR { line[FNR] = $0; next }
+    { split(line[FNR], a, ",")
+      for (i = 1; i <= NF; i++) {
+        if ($i !~ /^[-+0-9.eE]+$/) { if ($i != a[i]) bad = 1; continue }
+        d = $i - a[i]; d = d < 0 ? -d : d; v = $i < 0 ? -$i : $i
+        if (v > big[i]) big[i] = v
+        if (d > diff[i]) diff[i] = d
+      } }
+    END { for (i in diff) if (diff[i] > 1e-9 * big[i]) bad = 1; exit bad }' "$1" "$2"
 }
 slow=(--set 'integrator.rtol=1e-10' --set 'integrator.atol=1e-16')  # B1 for several seconds
 
@@ -60,6 +77,26 @@ for _ in $(seq 100); do [ -s "$out/history.csv" ] && break; sleep 0.1; done
 kill -s INT "$pid"; wait "$pid"
 [ "$rc" -eq 2 ] || fail "concurrent run: exit $rc, want 2"
 grep -q "another rccm run is writing" "$work/err" || fail "concurrent run: $(cat "$work/err")"
+
+# 5. Kill -9 halfway, restart, compare with an uninterrupted run.
+euler=(--set integrator.method=euler --set time.steps=20000 --set output.checkpoint_steps=1000)
+"$rccm" run "$src/config/b1.cfg" -q "${euler[@]}" --set "output.directory=\"$work/whole\"" 2>/dev/null
+"$rccm" run "$src/config/b1.cfg" -q "${euler[@]}" --set "output.directory=\"$work/parts\"" 2>/dev/null &
+pid=$!
+for _ in $(seq 200); do [ -f "$work/parts/history.csv" ] && [ "$(wc -l < "$work/parts/history.csv")" -gt 8000 ] && break; sleep 0.02; done
+kill -s KILL "$pid"; wait "$pid" 2>/dev/null
+grep -q "^step " "$work/parts/checkpoint.txt" 2>/dev/null || fail "kill -9: no checkpoint written"
+"$rccm" run "$src/config/b1.cfg" -q "${euler[@]}" --restart "$work/parts" >/dev/null 2>"$work/err" \
+  || fail "restart: $(cat "$work/err")"
+for f in interface_t3.571.csv interface_t5.143.csv interface_t10.csv; do
+  same_csv "$work/whole/$f" "$work/parts/$f" || fail "restart: $f differs from the uninterrupted run's"
+done
+[ "$(wc -l < "$work/whole/history.csv")" = "$(wc -l < "$work/parts/history.csv")" ] \
+  || fail "restart: history.csv has $(wc -l < "$work/parts/history.csv") lines, the uninterrupted run's $(wc -l < "$work/whole/history.csv")"
+cut -d, -f1-8 "$work/whole/curves.csv" > "$work/a"; cut -d, -f1-8 "$work/parts/curves.csv" > "$work/b"
+same_csv "$work/a" "$work/b" || fail "restart: curves.csv (time, load, force, energy terms) differs"
+"$rccm" run "$src/config/b1.cfg" -q "${euler[@]}" --set interface.alpha=2.0 --restart "$work/parts" 2>"$work/err"; rc=$?
+[ "$rc" -eq 2 ] && grep -q "other settings" "$work/err" || fail "restart with other settings: exit $rc, $(cat "$work/err")"
 
 echo "$failed failed"
 [ "$failed" -eq 0 ]

@@ -18,6 +18,9 @@ struct IntegratorStats {
   long newton_iterations = 0; // ARKODE nonlinear iterations; fixed-point iterations (rate-independent)
 };
 
+/// Counts of two parts of a run (before and after a restart).
+IntegratorStats operator+(const IntegratorStats& a, const IntegratorStats& b);
+
 class AdhesionIntegrator {
  public:
   virtual ~AdhesionIntegrator() = default;
@@ -26,6 +29,12 @@ class AdhesionIntegrator {
   virtual IntegratorStats stats() const = 0;
   /// What the user must know about the result (an unstable explicit step, clamping).
   virtual std::vector<std::string> warnings() const { return {}; }
+  /// The size of the last accepted step, s (a restart begins with it).
+  virtual double last_step() const = 0;
+  /// What the scheme has observed so far (behind its warnings), for a checkpoint, and its
+  /// restoration when a run restarts from one.
+  virtual std::vector<double> diagnostics() const { return {}; }
+  virtual void restore(const std::vector<double>&) {}
 };
 
 /// Steps of equal size T / steps, with the output times added as step ends.
@@ -34,6 +43,7 @@ class FixedStepIntegrator : public AdhesionIntegrator {
   FixedStepIntegrator(BetaOde& ode, const Config& cfg);
   void advance(double t_out) final;
   IntegratorStats stats() const override { return stats_; }
+  double last_step() const override { return last_step_; }
 
  protected:
   /// One step from the committed state to t_new; must end with ode_.accept(t_new, beta).
@@ -43,6 +53,7 @@ class FixedStepIntegrator : public AdhesionIntegrator {
 
  private:
   std::vector<double> grid_;
+  double last_step_ = 0;
 };
 
 std::unique_ptr<AdhesionIntegrator> make_integrator(BetaOde& ode, const Config& cfg);

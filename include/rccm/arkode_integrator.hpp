@@ -18,6 +18,7 @@ class ArkodeIntegrator final : public AdhesionIntegrator {
   ~ArkodeIntegrator() override;
   void advance(double t_out) override;
   IntegratorStats stats() const override;
+  double last_step() const override;
 
  private:
   struct Impl;

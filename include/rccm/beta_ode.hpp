@@ -47,7 +47,12 @@ class BetaOde {
   const SolveCounts& totals() const { return totals_; }
   int steps() const { return step_; }
 
-  /// f(t, beta) into `f`; throws SolveError when the contact solve fails.
+  /// How far a stage value of beta may stray from [0, 1] (round-off of the scheme's sums)
+  /// before rhs() refuses it.
+  static constexpr double beta_slack = 1e-6;
+
+  /// f(t, beta) into `f`; throws SolveError when the contact solve fails, or when beta is
+  /// not finite or outside [-beta_slack, 1 + beta_slack] (ARKODE then cuts the step).
   const ContactSolution& rhs(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> f);
 
   /// Cn u_n^2 + Ct u_t^2 per node (the opening energy density without beta), N/mm.
@@ -61,8 +66,15 @@ class BetaOde {
   /// at the accepted state, commits it and notifies the observer.
   void accept(double t, Eigen::Ref<Eigen::VectorXd> beta);
 
+  /// Takes up a run from a checkpoint: `state` becomes the committed state after `step`
+  /// accepted steps and `totals` solves (no solve, no observer call).
+  void resume(const InterfaceState& state, int step, const SolveCounts& totals);
+
  private:
   const ContactSolution& solve(double t, const Eigen::VectorXd& beta);
+  /// Throws SolveError naming the step, t and the first node whose beta is not finite or
+  /// outside [-beta_slack, 1 + beta_slack].
+  void check_beta(double t, const Eigen::VectorXd& beta, const char* what) const;
 
   const Model& model_;
   BipotentialSolver solver_;

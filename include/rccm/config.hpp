@@ -113,11 +113,15 @@ struct OutputParams {
   std::string directory = "results";
   std::vector<double> times;      // s, in [0, T]
   std::vector<WatchPoint> watch;
+  int checkpoint_steps = 100;     // a restart point every this many accepted steps; 0: only at a stop
 };
 
 struct Config {
   std::string file;  // path it was read from
   std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
+  /// Fingerprint of every setting that shapes the results (all but output.directory and
+  /// output.checkpoint_steps): a checkpoint restarts only a run of the same settings.
+  std::string settings;
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
   /// the wrong length once the mesh is known, an unwritable directory).

@@ -32,6 +32,8 @@ class EnergyBalance {
 
   /// Adds the step from the previous accepted state to this one.
   void add(const InterfaceState& s, const BodyState& b);
+  /// Takes up the balance at a checkpoint: `terms` accumulated up to the state (s, b).
+  void resume(const InterfaceState& s, const BodyState& b, const EnergyTerms& terms);
   const EnergyTerms& terms() const { return terms_; }
 
  private:

@@ -13,6 +13,8 @@ class EulerIntegrator final : public FixedStepIntegrator {
  public:
   EulerIntegrator(BetaOde& ode, const Config& cfg);
   std::vector<std::string> warnings() const override;
+  std::vector<double> diagnostics() const override { return {max_ratio_, double(clamped_)}; }
+  void restore(const std::vector<double>& d) override;
 
   double max_stability_ratio() const { return max_ratio_; }  // max of dt (C u^2) / alpha
   long clamped() const { return clamped_; }                  // node-steps clamped at beta = 0

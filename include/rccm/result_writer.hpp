@@ -15,13 +15,22 @@
 
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace rccm {
 
+/// Where a restarted run takes up its files: the checkpoint's time and output times.
+struct ResumePoint {
+  double t = 0;
+  std::vector<double> output_times;  // of the snapshots taken up to t
+};
+
 class ResultWriter {
  public:
-  /// Writes the CSV headers into `directory` (created and locked by the caller).
-  ResultWriter(const Model& model, const std::string& directory);
+  /// Writes the CSV headers into `directory` (created and locked by the caller). With
+  /// `resume`: keeps the lines and files of an earlier run up to resume->t and removes the
+  /// rest (what an interrupted run wrote after its checkpoint), then appends.
+  ResultWriter(const Model& model, const std::string& directory, const ResumePoint* resume = nullptr);
 
   void step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e);
   void output(const InterfaceState& s, const BodyState& b);

@@ -50,6 +50,7 @@ struct RunOptions {
   bool progress = false;             // one updating line on stderr
   bool write_files = false;          // results in output.directory
   bool force = false;                // overwrite the results of an earlier run there
+  bool restart = false;              // go on from output.directory/checkpoint.txt (Checkpoint)
   BetaOde::Observer observer;        // called after each accepted step (tests)
 };
 
@@ -58,7 +59,8 @@ class Simulation {
   Simulation(const Config& cfg, RunOptions options = {}) : cfg_(cfg), options_(std::move(options)) {}
 
   /// Runs the whole problem; throws InputError (bad model: nothing written), SolveError or
-  /// Interrupted (the files then hold every accepted step, the last state and the report).
+  /// Interrupted (the files then hold every accepted step, the last state, the report and a
+  /// checkpoint to restart from).
   RunResult run();
 
  private:

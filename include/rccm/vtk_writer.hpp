@@ -19,7 +19,13 @@ class VtkWriter {
   /// Writes mesh_<k>.vtu for this state and rewrites results.pvd (complete after each call).
   void write(const InterfaceState& s, const BodyState& b);
 
+  /// Takes up the files of an earlier run that wrote one .vtu at each of `times`: removes
+  /// later .vtu files and rewrites results.pvd with these.
+  void resume(const std::vector<double>& times);
+
  private:
+  static std::string file_name(std::size_t k);
+  void write_collection() const;
   const Model& model_;
   std::string directory_;
   std::vector<std::pair<double, std::string>> files_;
