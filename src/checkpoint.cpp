@@ -137,6 +137,7 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
     w.vector("snapshot_u", s.u);
   }
   w.vector("diagnostics", Eigen::Map<const Eigen::VectorXd>(c.diagnostics.data(), Eigen::Index(c.diagnostics.size())));
+  w.vector("excursion", Eigen::Vector3d(c.excursion.size, c.excursion.t, c.excursion.node));
   w.text("end", "");
   file.commit();
 }
@@ -196,6 +197,9 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   }
   const Eigen::VectorXd diagnostics = r.vector("diagnostics");
   c.diagnostics.assign(diagnostics.begin(), diagnostics.end());
+  const Eigen::VectorXd excursion = r.vector("excursion");
+  if (excursion.size() != 3) r.fail("3 numbers for 'excursion'");
+  c.excursion = {excursion[0], excursion[1], int(excursion[2])};
   r.text("end");
   return c;
 }

@@ -106,8 +106,8 @@ RunResult Simulation::run() {
   std::unique_ptr<AdhesionIntegrator> integrator;
   IntegratorStats earlier;                // counts of the run a restart continues
   const auto save_checkpoint = [&](const BetaOde& ode) {
-    Checkpoint c{cfg_.settings, ode.steps(), integrator->last_step(), ode.committed(), energy->terms(),
-                 integrator->diagnostics(), {}};
+    Checkpoint c{cfg_.settings,          ode.steps(),     integrator->last_step(), ode.committed(),
+                 energy->terms(),        integrator->diagnostics(), ode.excursion(), {}};
     c.progress.snapshots = result.snapshots;
     c.progress.steps = result.steps;
     c.progress.peak_force = result.peak_force;
@@ -157,7 +157,10 @@ RunResult Simulation::run() {
   Config integrator_config = cfg_;
   integrator_config.integrator = integration;
   integrator = make_integrator(ode, integrator_config);
-  if (resume) integrator->restore(resume->diagnostics);
+  if (resume) {
+    integrator->restore(resume->diagnostics);
+    ode.restore(resume->excursion);
+  }
 
   // 4. Integrate to each output time exactly; write the interface and the mesh there.
   const auto snapshot = [&]() {
@@ -173,6 +176,7 @@ RunResult Simulation::run() {
     result.solves = ode.totals();
     result.energy = energy->terms();
     result.warnings = integrator->warnings();
+    for (const std::string& w : ode.warnings()) result.warnings.push_back(w);
     result.wall_seconds = seconds_since(start);
     if (writer) write_reports(writer->directory(), cfg_, result);
   };

@@ -110,6 +110,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   c.state.status = {Status::Stick, Status::Slide, Status::Separated, Status::Stick, Status::Slide};
   c.energy = {1.0 / 3, 2.0 / 3, -1e-17, 3.5, 0.1, -0.0};
   c.diagnostics = {44.95, 7};
+  c.excursion = {0.25, 0.6, 2};
   c.progress.peak_force = {203.51, -1e-9};
   c.progress.peak_time = {0.3, 0.0};
   c.progress.solves = {35443, 87000, 7, 1.25};
@@ -131,6 +132,8 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   CHECK(r.energy.free_energy_change == c.energy.free_energy_change);
   CHECK(std::signbit(r.energy.normal_contact_work));
   CHECK(r.diagnostics == c.diagnostics);
+  CHECK(r.excursion.size == 0.25);
+  CHECK(r.excursion.node == 2);
   CHECK(r.progress.peak_force == c.progress.peak_force);
   CHECK(r.progress.solves.sweeps == c.progress.solves.sweeps);
   CHECK(r.progress.integrator.rejected == c.progress.integrator.rejected);

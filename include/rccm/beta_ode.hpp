@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 
 #include <functional>
+#include <string>
+#include <vector>
 
 namespace rccm {
 
@@ -47,12 +49,18 @@ class BetaOde {
   const SolveCounts& totals() const { return totals_; }
   int steps() const { return step_; }
 
-  /// How far a stage value of beta may stray from [0, 1] (round-off of the scheme's sums)
-  /// before rhs() refuses it.
+  /// How far an accepted beta may leave [0, previous beta] (round-off of the scheme's sums)
+  /// before warnings() reports it.
   static constexpr double beta_slack = 1e-6;
 
-  /// f(t, beta) into `f`; throws SolveError when the contact solve fails, or when beta is
-  /// not finite or outside [-beta_slack, 1 + beta_slack] (ARKODE then cuts the step).
+  /// The largest amount by which an accepted beta left [0, previous beta] before clamping.
+  struct Excursion {
+    double size = 0, t = 0;
+    int node = -1;
+  };
+
+  /// f(t, beta) into `f`; throws SolveError when the contact solve fails or beta is not
+  /// finite (ARKODE then cuts the step).
   const ContactSolution& rhs(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> f);
 
   /// Cn u_n^2 + Ct u_t^2 per node (the opening energy density without beta), N/mm.
@@ -70,11 +78,16 @@ class BetaOde {
   /// accepted steps and `totals` solves (no solve, no observer call).
   void resume(const InterfaceState& state, int step, const SolveCounts& totals);
 
+  /// What the user must know: an accepted beta that left [0, previous beta] by more than
+  /// beta_slack (clamped).
+  std::vector<std::string> warnings() const;
+  const Excursion& excursion() const { return excursion_; }
+  void restore(const Excursion& e) { excursion_ = e; }
+
  private:
   const ContactSolution& solve(double t, const Eigen::VectorXd& beta);
-  /// Throws SolveError naming the step, t and the first node whose beta is not finite or
-  /// outside [-beta_slack, 1 + beta_slack].
-  void check_beta(double t, const Eigen::VectorXd& beta, const char* what) const;
+  /// Throws SolveError naming the step, t and the first node whose beta is NaN or Inf.
+  void check_finite(double t, const Eigen::VectorXd& beta, const char* what) const;
 
   const Model& model_;
   BipotentialSolver solver_;
@@ -87,6 +100,7 @@ class BetaOde {
   ContactSolution last_;
   SolveCounts totals_, step_counts_;
   int step_ = -1;
+  Excursion excursion_;
   double step_start_ = 0;  // wall clock at the previous accepted step
 };
 

@@ -6,6 +6,7 @@
 // bits it wrote.
 #pragma once
 
+#include "rccm/beta_ode.hpp"
 #include "rccm/config.hpp"
 #include "rccm/energy_balance.hpp"
 #include "rccm/interface_state.hpp"
@@ -22,6 +23,7 @@ struct Checkpoint {
   InterfaceState state;   // committed: t, beta, Rbar, u, y, status
   EnergyTerms energy;     // accumulated up to state.t
   std::vector<double> diagnostics;  // the integrator's (AdhesionIntegrator::diagnostics)
+  BetaOde::Excursion excursion;     // of beta out of [0, previous beta] so far
   RunResult progress;     // snapshots, step records, peak forces, solve and integrator counts
 };
 
