@@ -101,6 +101,15 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   const double tol = params_.tolerance;
 
   ContactSolution s;
+  // No load (q0 = 0, e.g. t = 0): the solution is exactly zero. Iterating towards it from a
+  // warm start would shrink Rbar geometrically while its relative change stays constant.
+  if (pb.q0.isZero(0.0)) {
+    s.Rbar = s.y = s.u = Eigen::VectorXd::Zero(m);
+    s.status.assign(nc, Status::Separated);
+    s.converged = true;
+    s.iterations = 0;
+    return s;
+  }
   // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
   s.Rbar = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
   s.y = s.Rbar;

@@ -32,7 +32,8 @@ void EulerIntegrator::take_step(double t_new) {
     if (f[i] < 0) max_ratio_ = std::max(max_ratio_, dt * e[i] / alpha_);
     if (beta[i] < 0) ++clamped_;
   }
-  ode_.accept(t_new, beta);  // clamps to [0, beta_n], re-solves and commits
+  beta = beta.cwiseMax(0.0).cwiseMin(c.beta);  // the clamps counted above (warnings())
+  ode_.accept(t_new, beta);                    // re-solves and commits
 }
 
 void EulerIntegrator::restore(const std::vector<double>& d) {

@@ -87,10 +87,8 @@ TEST_CASE("B2 shear: invariants at every step, pure Coulomb sliding once beta is
 }
 
 TEST_CASE("B1: ARKODE results converge as the tolerance tightens", "[benchmark]") {
-  // beta along the interface at t1 and t2, and at B at t1, against a run at rtol 1e-7.
-  // Below rtol ~1e-4 the error stops shrinking at ~1e-6 (absolute, at the front node,
-  // beta ~ 0.4): the front's self-accelerating debonding amplifies the local errors, and
-  // contact status switches make f only piecewise smooth. That plateau is asserted too.
+  // beta along the interface at t1 and t2, and at B at t1, against a run at rtol 1e-7: the
+  // global error follows the tolerance (within 5 rtol) and shrinks with it.
   StepChecks ignore;
   const auto at = [&](const char* rtol) {
     return run("b1.cfg", {std::string("integrator.rtol=") + rtol, "integrator.atol=1e-14"}, ignore);
@@ -106,12 +104,9 @@ TEST_CASE("B1: ARKODE results converge as the tolerance tightens", "[benchmark]"
   }
   INFO("profile errors " << errors[0] << " " << errors[1] << " " << errors[2] << " " << errors[3]
                          << "; relative at B " << errors_B[0] << " " << errors_B[1] << " " << errors_B[2]);
-  // At loose rtol the error is not monotone in rtol (which step lands near a status switch
-  // is a matter of round-off); it stays within 10 rtol, and collapses below rtol 1e-4.
-  CHECK(errors[0] < 10 * 1e-2);
-  CHECK(errors[1] < 10 * 1e-3);
-  CHECK(errors[2] < 0.01 * std::min(errors[0], errors[1]));
-  CHECK(errors[3] < 3e-6);
+  const double rtols[] = {1e-2, 1e-3, 1e-4, 1e-5};
+  for (int k = 0; k < 4; ++k) CHECK(errors[k] < 5 * rtols[k]);
+  for (int k = 0; k < 3; ++k) CHECK(errors[k + 1] < errors[k]);
   CHECK(errors_B[1] < errors_B[0]);
   CHECK(errors_B[2] < errors_B[1]);
 }
@@ -129,7 +124,7 @@ TEST_CASE("B1 stiff (alpha = 1e-3): the implicit integrator finishes in bounded 
   StepChecks euler_checks;
   try {
     const RunResult e = run("b1.cfg", {"interface.alpha=1e-3", "time.T=8", "loads.[0].value=0.24", "integrator.method=euler"}, euler_checks);
-    REQUIRE(e.warnings.size() == 1);
+    REQUIRE(!e.warnings.empty());
     CHECK_THAT(e.warnings[0], Catch::Contains("unstable"));
   } catch (const SolveError& e) {  // or it fails, and says why
     CHECK_THAT(e.what(), Catch::Contains("explicit Euler was unstable"));
