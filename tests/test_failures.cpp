@@ -23,12 +23,9 @@ struct Failure {
   int last_step = -1;  // the last accepted step the observer saw
 };
 
-/// B1 with Euler and a contact solver allowed too few sweeps (8, no exact active-set step):
-/// the first steps converge, the solve fails once the debonding front starts to move.
-Failure run_starved(const std::string& directory) {
-  const Config cfg = load_config(RCCM_SOURCE_DIR "/config/b1.cfg",
-                                 {"solver.max_iterations=8", "solver.active_set=false", "integrator.method=\"euler\"",
-                                  "output.directory=\"" + directory + "\""});
+/// Runs `cfg` into its output directory, expecting a SolveError: its message and the last
+/// accepted step.
+Failure run_to_failure(const Config& cfg) {
   Failure f;
   RunOptions o;
   o.write_files = true;
@@ -40,6 +37,14 @@ Failure run_starved(const std::string& directory) {
     f.message = e.what();
   }
   return f;
+}
+
+/// B1 with Euler and a contact solver allowed too few sweeps (8, no exact active-set step):
+/// the first steps converge, the solve fails once the debonding front starts to move.
+Config starved_b1(const std::string& directory) {
+  return load_config(RCCM_SOURCE_DIR "/config/b1.cfg",
+                     {"solver.max_iterations=8", "solver.active_set=false", "integrator.method=\"euler\"",
+                      "output.directory=\"" + directory + "\""});
 }
 
 /// Every line of a CSV file has the header's number of fields; returns the number of lines.
@@ -58,7 +63,7 @@ std::size_t complete_lines(const std::string& path) {
 TEST_CASE("a contact solve that does not converge stops the run and says where and what to change",
           "[failure]") {
   const std::string dir = fs::temp_directory_path() / "rccm_failure_contact";
-  const Failure f = run_starved(dir);
+  const Failure f = run_to_failure(starved_b1(dir));
   REQUIRE(f.last_step > 5);  // it failed halfway, not at the start
   const std::string step = "step " + std::to_string(f.last_step + 1) + ", t = ";
   CHECK_THAT(f.message, Catch::Contains(step));
@@ -74,10 +79,7 @@ TEST_CASE("a contact solve that does not converge stops the run and says where a
   const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
   CHECK_THAT(text, Catch::Contains("status: STOPPED"));
   CHECK_THAT(text, Catch::Contains("did not converge"));
-  const Config cfg = load_config(RCCM_SOURCE_DIR "/config/b1.cfg",
-                                 {"solver.max_iterations=8", "solver.active_set=false", "integrator.method=\"euler\"",
-                                  "output.directory=\"" + dir + "\""});
-  CHECK(read_checkpoint(dir, cfg).step == f.last_step);
+  CHECK(read_checkpoint(dir, starved_b1(dir)).step == f.last_step);
   fs::remove_all(dir);
 }
 
@@ -85,18 +87,8 @@ TEST_CASE("ARKODE cuts its step when a stage's contact solve fails, and says so 
           "[failure]") {
   // A bonded block pulled by a force: the adhesion wears off and the block comes loose.
   const std::string dir = fs::temp_directory_path() / "rccm_failure_arkode";
-  const Config cfg =
-      load_config(RCCM_SOURCE_DIR "/tests/stops/comes_loose_halfway.cfg", {"output.directory=\"" + dir + "\""});
-  Failure f;
-  RunOptions o;
-  o.write_files = true;
-  o.force = true;
-  o.observer = [&f](const AcceptedStep& a) { f.last_step = a.step; };
-  try {
-    Simulation(cfg, o).run();
-  } catch (const SolveError& e) {
-    f.message = e.what();
-  }
+  const Failure f = run_to_failure(
+      load_config(RCCM_SOURCE_DIR "/tests/stops/comes_loose_halfway.cfg", {"output.directory=\"" + dir + "\""}));
   REQUIRE(f.last_step > 20);
   // ARKODE retried with smaller steps (the failure was recoverable) before it gave up.
   CHECK_THAT(f.message, Catch::Contains("repeated recoverable right-hand side function errors"));
