@@ -58,6 +58,11 @@ bool ActiveSetSystem::prepare_update(const ContactProblem& pb, const std::vector
     if (pattern[i] != factorized_[i]) changed.push_back(static_cast<int>(i));
   const int c = 2 * static_cast<int>(changed.size()), m = static_cast<int>(A0_.rows());
   if (c > max_changed_rows) return false;
+  if (c == 0) {  // the factorized pattern itself (Eigen's solves are undefined on 0 columns)
+    D_.resize(0, m);
+    Z_.resize(m, 0);
+    return true;
+  }
   // A = A0 + S D: rows 2i, 2i+1 of the changed nodes replaced (Sherman-Morrison-Woodbury).
   D_.resize(c, m);
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, c);

@@ -8,6 +8,7 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include <cstdlib>
 #include <sstream>
 
 namespace rccm {
@@ -159,8 +160,10 @@ void ArkodeIntegrator::advance(double t_out) {
   if (m.interrupted) throw *m.interrupted;
 
   std::ostringstream msg;
-  msg << "ARKODE stopped at t = " << m.ode.committed().t << " s after step " << m.ode.steps() << " ("
-      << ARKStepGetReturnFlagName(flag) << ", flag " << flag << ")";
+  char* name = ARKStepGetReturnFlagName(flag);  // malloc'ed by ARKODE
+  msg << "ARKODE stopped at t = " << m.ode.committed().t << " s after step " << m.ode.steps() << " (" << name
+      << ", flag " << flag << ")";
+  std::free(name);
   if (!m.arkode_message.empty()) msg << ": " << m.arkode_message;
   if (!m.contact_failure.empty()) msg << "\n  last contact failure: " << m.contact_failure;
   const Eigen::VectorXd& beta = m.ode.committed().beta;
