@@ -1,49 +1,94 @@
-// fc2d-bench FILE.dat...: the project's bipotential solver (Gauss-Seidel and Jacobi forms)
-// against Siconos' fc2d NSGS on 2D frictional contact problems in Siconos' .dat format
-// (e.g. ../shared/data/siconos-fc2d/). Per file: contacts, iterations, Siconos' error measure
-// (fc2d_compute_error) of each solution, and time.
+// fc2d-bench [--benchmarks CONFIG_DIR] [FILE.dat...]: the project's bipotential solver
+// (Gauss-Seidel and Jacobi forms) against Siconos' fc2d NSGS on 2D frictional contact
+// problems: Siconos .dat files (e.g. ../shared/data/siconos-fc2d/) and, with --benchmarks,
+// the condensed problems that B1 and B2 (Euler-210) solve at every 40th step.
+// Per problem and solver: iterations, Siconos' error measure (fc2d_compute_error) of the
+// solution, time per solve, and Siconos' time over ours at the same error: Siconos is asked
+// for the error our Gauss-Seidel solve reached, or 1e-10 (our tolerance) where ours went
+// below that (Siconos cannot always reach round-off; README "Performance").
 #include "rccm/bipotential_solver.hpp"
 #include "rccm/errors.hpp"
 #include "siconos_peer.hpp"
 
 #include <chrono>
 #include <cstdio>
+#include <cstring>
+#include <functional>
 #include <iostream>
 
 using namespace rccm;
 
+namespace {
+
+/// Seconds per call of `f`, repeated until 50 ms have passed (tiny problems time badly once).
+double seconds_per_call(const std::function<void()>& f) {
+  const auto start = std::chrono::steady_clock::now();
+  int calls = 0;
+  double elapsed = 0;
+  do {
+    f();
+    ++calls;
+    elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  } while (elapsed < 0.05 && calls < 100000);
+  return elapsed / calls;
+}
+
+void row(const std::string& name, int contacts, const char* solver, int iterations, double error, double seconds,
+         double ratio, bool converged) {
+  std::printf("%-42s %8d  %-14s %10d %12.3e %12.4f %10s%s\n", name.c_str(), contacts, solver, iterations, error,
+              1e3 * seconds, ratio > 0 ? std::to_string(ratio).substr(0, 6).c_str() : "", converged ? "" : "  (not converged)");
+}
+
+/// Our two forms, then Siconos NSGS at the error our Gauss-Seidel solve reached.
+void compare(const std::string& name, const PlainContactProblem& p, const ContactProblem& pb) {
+  double ours_error = 0, ours_seconds = 0;
+  for (SweepForm form : {SweepForm::GaussSeidel, SweepForm::Jacobi}) {
+    SolverParams params;
+    params.tolerance = 1e-10;
+    params.max_iterations = 100000;
+    params.form = form;
+    ContactSolution s;
+    const double seconds = seconds_per_call([&] { s = BipotentialSolver(params).solve(pb); });
+    const double e = peer::error(p, s.Rbar);
+    if (form == SweepForm::GaussSeidel) ours_error = e, ours_seconds = seconds;
+    row(name, pb.size(), form == SweepForm::GaussSeidel ? "bipotential-GS" : "bipotential-J", s.iterations, e,
+        seconds, 0, s.converged);
+  }
+  const double target = std::max(ours_error, 1e-10);
+  peer::PeerSolution n;
+  const double seconds = seconds_per_call([&] { n = peer::solve(p, "nsgs", target, 100000); });
+  row(name, pb.size(), "siconos-NSGS", n.iterations, n.error, seconds, seconds / ours_seconds, n.info == 0);
+}
+
+}  // namespace
+
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: fc2d-bench FILE.dat...\n";
+    std::cerr << "usage: fc2d-bench [--benchmarks CONFIG_DIR] [FILE.dat...]\n";
     return 2;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a line per solver, even when interrupted
-  const double tolerance = 1e-10;
-  std::printf("%-42s %8s  %-14s %10s %12s %12s\n", "file", "contacts", "solver", "iterations", "error", "time [ms]");
+  std::printf("%-42s %8s  %-14s %10s %12s %12s %10s\n", "problem", "contacts", "solver", "iterations", "error",
+              "ms/solve", "siconos/GS");
   int status = 0;
   for (int a = 1; a < argc; ++a) {
-    std::string name = argv[a];
-    name = name.substr(name.find_last_of('/') + 1);
     try {
-      const PlainContactProblem p = peer::read_dat(argv[a]);
-      const ContactProblem pb = from_plain(p);
-      for (SweepForm form : {SweepForm::GaussSeidel, SweepForm::Jacobi}) {
-        SolverParams params;
-        params.tolerance = tolerance;
-        params.max_iterations = 100000;
-        params.form = form;
-        const auto start = std::chrono::steady_clock::now();
-        const ContactSolution s = BipotentialSolver(params).solve(pb);
-        const double ms = 1e3 * std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        std::printf("%-42s %8d  %-14s %10d %12.3e %12.3f%s\n", name.c_str(), pb.size(),
-                    form == SweepForm::GaussSeidel ? "bipotential-GS" : "bipotential-J", s.iterations,
-                    peer::error(p, s.Rbar), ms, s.converged ? "" : "  (not converged)");
+      if (std::strcmp(argv[a], "--benchmarks") == 0 && a + 1 < argc) {
+        const std::string dir = argv[++a];
+        for (const char* file : {"b1", "b2"}) {
+          const Config cfg = load_config(dir + "/" + file + ".cfg", {"integrator.method=euler"});
+          const Model model(cfg);
+          for (const peer::StepProblem& sp : peer::step_problems(model, cfg, 40))
+            compare(std::string(file) + " step " + std::to_string(sp.step), sp.plain, sp.problem);
+        }
+        continue;
       }
-      const peer::PeerSolution n = peer::solve(p, "nsgs", tolerance, 100000);
-      std::printf("%-42s %8d  %-14s %10d %12.3e %12.3f%s\n", name.c_str(), pb.size(), "siconos-NSGS", n.iterations,
-                  n.error, 1e3 * n.seconds, n.info == 0 ? "" : "  (not converged)");
+      std::string name = argv[a];
+      name = name.substr(name.find_last_of('/') + 1);
+      const PlainContactProblem p = peer::read_dat(argv[a]);
+      compare(name, p, from_plain(p));
     } catch (const std::exception& e) {
-      std::printf("%-42s  failed: %s\n", name.c_str(), e.what());
+      std::printf("%-42s  failed: %s\n", argv[a], e.what());
       status = 1;
     }
   }

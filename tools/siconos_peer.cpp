@@ -1,6 +1,7 @@
 #include "siconos_peer.hpp"
 
 #include "rccm/errors.hpp"
+#include "rccm/simulation.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -108,6 +109,22 @@ double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
   fc2d_compute_error(fc, z.data(), w.data(), 1e-300, std::max(p.q.norm(), 1e-300), &e);
   frictionContactProblem_free(fc);
   return e;
+}
+
+std::vector<StepProblem> step_problems(const Model& model, const Config& cfg, int every) {
+  std::vector<StepProblem> out;
+  Eigen::VectorXd ut_previous = Eigen::VectorXd::Zero(model.contact_nodes());
+  RunOptions options;
+  options.observer = [&](const AcceptedStep& a) {
+    if (a.step > 0 && a.step % every == 0) {
+      // The problem this step solved at commit: (t, beta), slip from the previous accepted state.
+      const ContactProblem pb = model.contact_problem(a.t, a.state.beta, ut_previous);
+      out.push_back({a.step, a.t, pb, plain_form(pb)});
+    }
+    ut_previous = a.state.ut();
+  };
+  Simulation(cfg, options).run();
+  return out;
 }
 
 }  // namespace rccm::peer

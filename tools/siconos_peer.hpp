@@ -3,9 +3,12 @@
 // contact (normal, tangent); ours is (tangent, normal): the swap happens here only.
 #pragma once
 
+#include "rccm/config.hpp"
 #include "rccm/contact_problem.hpp"
+#include "rccm/model.hpp"
 
 #include <string>
+#include <vector>
 
 namespace rccm::peer {
 
@@ -25,5 +28,16 @@ PeerSolution solve(const PlainContactProblem& p, const std::string& solver, doub
 
 /// fc2d_compute_error of a solution R ((t, n) order), normalised by |q|.
 double error(const PlainContactProblem& p, const Eigen::VectorXd& R);
+
+/// A condensed contact problem of a run: the one its commit solve met at an accepted step.
+struct StepProblem {
+  int step = 0;
+  double t = 0;
+  ContactProblem problem;       // as the run poses it (springs, gap, previous slip); points into the model
+  PlainContactProblem plain;    // the same in Siconos' plain form
+};
+
+/// Runs `cfg` (no files) and returns the contact problems of every `every`-th accepted step.
+std::vector<StepProblem> step_problems(const Model& model, const Config& cfg, int every);
 
 }  // namespace rccm::peer
