@@ -9,7 +9,13 @@ namespace rccm {
 struct CholmodFactor::Impl {
   cholmod_common cm;
   cholmod_factor* L = nullptr;
-  Impl() { cholmod_start(&cm); }
+  Impl() {
+    cholmod_start(&cm);
+    // No CHOLMOD warnings on stderr: a singular stiffness is reported by the caller (rcond)
+    // with what to change, not as "matrix not positive definite".
+    cm.print = 0;
+    cm.error_handler = nullptr;
+  }
   ~Impl() {
     cholmod_free_factor(&L, &cm);
     cholmod_finish(&cm);

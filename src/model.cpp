@@ -57,7 +57,11 @@ Model::Model(const Config& cfg) : cfg_(cfg), mesh_(make_rectangle(cfg.mesh)) {
   check_restrained(cfg, initial_beta());
   std::vector<int> interface_dofs;
   for (int node : interface_.nodes) interface_dofs.insert(interface_dofs.end(), {2 * node, 2 * node + 1});
-  body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_), interface_dofs);
+  try {
+    body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_), interface_dofs);
+  } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
+    throw InputError(cfg.where("loads") + ": " + e.what());
+  }
   condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_);
   D1_.resize(2 * interface_.size());
   for (int i = 0; i < interface_.size(); ++i)
