@@ -136,7 +136,7 @@ RunResult Simulation::run() {
       save_checkpoint(ode);
     if (options_.observer) options_.observer(a);
   });
-  IntegratorParams integration = cfg_.integrator;
+  Config integrator_config = cfg_;
   if (resume) {
     const InterfaceState initial = InterfaceState::initial(model);
     energy = std::make_unique<EnergyBalance>(model, initial, body_state(model, initial));
@@ -149,13 +149,12 @@ RunResult Simulation::run() {
     result.peak_time = resume->progress.peak_time;
     earlier = resume->progress.integrator;
     // ARKODE begins again where it was: with the last accepted step size, not an estimate.
-    if (integration.initial_step == 0) integration.initial_step = resume->last_step;
+    double& h0 = integrator_config.integrator.initial_step;
+    if (h0 == 0) h0 = resume->last_step;
   } else {
     Eigen::VectorXd beta0 = model.initial_beta();
     ode.accept(0.0, beta0);
   }
-  Config integrator_config = cfg_;
-  integrator_config.integrator = integration;
   integrator = make_integrator(ode, integrator_config);
   if (resume) {
     integrator->restore(resume->diagnostics);
