@@ -52,32 +52,40 @@ Eigen::Matrix<double, 2, Eigen::Dynamic> ActiveSetSystem::rows(const ContactProb
   return A;
 }
 
+bool ActiveSetSystem::rows_moved(const ContactProblem& pb, Rows kind, int i) const {
+  if (kind == Rows::Stick) return false;  // u rows: no beta in them
+  const auto moved = [&](int c) { return std::abs(pb.D1[c] - pb.Dbeta[c] - E0_[c]) > drift * pb.D1[c]; };
+  const bool spring = moved(2 * i) || moved(2 * i + 1);
+  return kind == Rows::Free ? spring : spring || std::abs(pb.mubar[i] - mubar0_[i]) > drift;
+}
+
 bool ActiveSetSystem::prepare_update(const ContactProblem& pb, const std::vector<Rows>& pattern) {
   std::vector<int> changed;
-  for (std::size_t i = 0; i < pattern.size(); ++i)
-    if (pattern[i] != factorized_[i]) changed.push_back(static_cast<int>(i));
+  for (std::size_t i = 0; i < pattern.size(); ++i) {
+    const int node = static_cast<int>(i);
+    if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], node)) changed.push_back(node);
+  }
   const int c = 2 * static_cast<int>(changed.size()), m = static_cast<int>(A0_.rows());
   if (c > max_changed_rows) return false;
-  if (c == 0) {  // the factorized pattern itself (Eigen's solves are undefined on 0 columns)
+  if (c == 0) {  // the factorized matrix itself (Eigen's solves are undefined on 0 columns)
     D_.resize(0, m);
-    Z_.resize(m, 0);
     return true;
   }
-  // A = A0 + S D: rows 2i, 2i+1 of the changed nodes replaced (Sherman-Morrison-Woodbury).
+  // A = A0 + S D: rows 2i, 2i+1 of the changed nodes replaced (Sherman-Morrison-Woodbury);
+  // Z = A0^-1 S is the changed nodes' columns of the inverse.
   D_.resize(c, m);
-  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(m, c);
+  Z_.resize(m, c);
   for (int k = 0; k < c / 2; ++k) {
     const int i = changed[k];
     D_.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
-    S(2 * i, 2 * k) = S(2 * i + 1, 2 * k + 1) = 1.0;
+    Z_.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
   }
-  Z_ = lu_.solve(S);
-  capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
+  capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_.lazyProduct(Z_));
   return true;
 }
 
 Eigen::VectorXd ActiveSetSystem::apply_inverse(const Eigen::VectorXd& r) const {
-  Eigen::VectorXd x = lu_.solve(r);
+  Eigen::VectorXd x = A0_inverse_ * r;
   if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
   return x;
 }
@@ -109,15 +117,16 @@ bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& p
   }
   D_.resize(0, 0);
   A0_ = matrix(pb, pattern);
-  lu_.compute(A0_);
+  A0_inverse_ = Eigen::PartialPivLU<Eigen::MatrixXd>(A0_).inverse();
   ++factorizations_;
-  factorized_ = pattern;
-  const Eigen::VectorXd dy = lu_.solve(r);
-  if (!dy.allFinite()) {
+  if (!A0_inverse_.allFinite()) {
     factorized_.clear();
     return false;
   }
-  y += dy;
+  factorized_ = pattern;
+  E0_ = pb.D1 - pb.Dbeta;
+  mubar0_ = pb.mubar;
+  y += A0_inverse_ * r;
   return true;
 }
 

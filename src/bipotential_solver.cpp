@@ -65,13 +65,6 @@ Vec2 modified_velocity_at(const ContactProblem& pb, int i, const Vec2& ui) {
   return modified_velocity(ui[0] - pb.ut_ref[i], pb.g0[i] + ui[1], pb.mubar[i]);
 }
 
-/// Natural-map residual of node i: |Rbar - proj(Rbar - rho s)|, in N.
-double natural_map(const ContactProblem& pb, const NodeBlock& b, int i, const Vec2& R, const Vec2& ui) {
-  if (b.fixed) return 0.0;
-  const Vec2 s = modified_velocity_at(pb, i, ui);
-  return (R - project_cone(R - b.rho * s, pb.mubar[i])).norm();
-}
-
 /// The rows of each node in the exact step, from its status and the sign of its friction.
 std::vector<Rows> pattern_of(const std::vector<Status>& status, const std::vector<NodeBlock>& blocks,
                              const Eigen::VectorXd& Rbar) {
@@ -99,6 +92,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
   const int local_max = gauss_seidel ? params_.local_iterations : 1;  // Jacobi: the paper's one step
   const double tol = params_.tolerance;
+  const int max_exact_first = 4;  // patterns tried by the exact-first phase
 
   ContactSolution s;
   // No load (q0 = 0, e.g. t = 0): the solution is exactly zero. Iterating towards it from a
@@ -127,11 +121,61 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   // The projections of the last sweep: in the cone by construction, they are the reported
   // Rbar (y - E u differs from them by the round-off of the cancellation above).
   Eigen::VectorXd R_projected = Eigen::VectorXd::Zero(m);
+  // A predictor-corrector pass at the current (Rbar, u) that changes nothing: each node's
+  // branch and projection, and the largest natural-map residual |Rbar - proj(Rbar - rho s)|
+  // scaled by the node's force level. Returns the force scale of the problem.
+  std::vector<Status> branch(nc, Status::Separated);
+  Eigen::VectorXd R_branch = Eigen::VectorXd::Zero(m);
+  const auto verifying_pass = [&]() {
+    const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(s.u);
+    const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
+    const double floor = noise_floor() / tol;
+    s.residual = 0;
+    s.worst_node = -1;
+    for (int i = 0; i < nc; ++i) {
+      // A node with both components prescribed takes no part: its Rbar is 0 by convention.
+      const Vec2 R = blocks[i].fixed ? Vec2::Zero() : Vec2(s.Rbar.segment<2>(2 * i));
+      const Vec2 tau = R - blocks[i].rho * modified_velocity_at(pb, i, s.u.segment<2>(2 * i));  // eq. 35
+      branch[i] = blocks[i].fixed ? Status::Separated : cone_branch(tau, pb.mubar[i]);
+      R_branch.segment<2>(2 * i) = blocks[i].fixed ? R : project_cone(tau, pb.mubar[i]);  // eqs. 36-38
+      const double level = std::max({R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F, floor});
+      const double r = (R - R_branch.segment<2>(2 * i)).norm() / level;
+      if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
+    }
+    return std::max(F, floor);
+  };
+
+  // Exact steps first (a primal-dual active-set iteration): from a warm start the pattern of
+  // the nearby solution is usually still right, and one exact solve of its linear problem
+  // leaves a single verifying pass. A pattern that does not settle in a few steps is left to
+  // the Gauss-Seidel sweeps below.
+  const bool exact_first = gauss_seidel && params_.active_set && nc <= params_.active_set_max_nodes && Rbar_start.size() == m;
+  if (exact_first) {
+    std::vector<Rows> tried;
+    for (int k = 0; k < max_exact_first && s.iterations < params_.max_iterations; ++k) {
+      ++s.iterations;
+      verifying_pass();
+      if (s.residual <= tol) {
+        s.converged = true;
+        s.status = branch;
+        s.Rbar = R_branch;
+        return s;
+      }
+      const std::vector<Rows> pattern = pattern_of(branch, blocks, R_branch);
+      if (pattern == tried || !active_set_.solve(pb, pattern, s.y)) break;
+      tried = pattern;
+      ++s.exact_solves;
+      s.u.noalias() = W * s.y;
+      s.u += pb.q0;
+      s.Rbar = s.y - E.cwiseProduct(s.u);
+    }
+  }
+
   // The warm start's pattern counts as seen: the exact step may follow the first sweep.
   std::vector<Rows> previous_pattern = active_set_.pattern(), solved_pattern;
   int repeats = 0, since_exact = 0;
   const int max_exact_solves = 10;
-  for (s.iterations = 1; s.iterations <= params_.max_iterations; ++s.iterations) {
+  for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
     const Eigen::VectorXd R_old = s.Rbar;
     const double noise = noise_floor();
     const double F_old = std::max(R_old.cwiseAbs().maxCoeff(), pb.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
@@ -168,21 +212,9 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
       s.y += params_.relaxation * (y_new - s.y);
 
     // Convergence: relative change of Rbar and the scaled natural-map residual.
-    double change = 0;
     const auto evaluate = [&]() {
       s.Rbar = s.y - E.cwiseProduct(s.u);
-      const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(s.u);
-      const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
-      const double floor = noise_floor() / tol;
-      change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / std::max(F, floor);
-      s.residual = 0;
-      s.worst_node = -1;
-      for (int i = 0; i < nc; ++i) {
-        const Vec2 R = s.Rbar.segment<2>(2 * i);
-        const double level = std::max({R.norm() + Radh.segment<2>(2 * i).norm(), 1e-8 * F, floor});
-        const double r = natural_map(pb, blocks[i], i, R, s.u.segment<2>(2 * i)) / level;
-        if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
-      }
+      const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / verifying_pass();
       return change <= tol && s.residual <= tol;
     };
     // A fresh u = W0 y + q0 drops the round-off that Gauss-Seidel's incremental updates

@@ -103,12 +103,15 @@ TEST_CASE("B1: ARKODE results converge as the tolerance tightens", "[benchmark]"
     errors_B.push_back(std::abs(r.snapshots[0].beta[0] - ref.snapshots[0].beta[0]) / ref.snapshots[0].beta[0]);
   }
   INFO("profile errors " << errors[0] << " " << errors[1] << " " << errors[2] << " " << errors[3]
-                         << "; relative at B " << errors_B[0] << " " << errors_B[1] << " " << errors_B[2]);
+                         << "; relative at B " << errors_B[0] << " " << errors_B[1] << " " << errors_B[2] << " "
+                         << errors_B[3]);
   const double rtols[] = {1e-2, 1e-3, 1e-4, 1e-5};
   for (int k = 0; k < 4; ++k) CHECK(errors[k] < 5 * rtols[k]);
   for (int k = 0; k < 3; ++k) CHECK(errors[k + 1] < errors[k]);
-  CHECK(errors_B[1] < errors_B[0]);
-  CHECK(errors_B[2] < errors_B[1]);
+  // beta at B is ~5e-10 (atol 1e-14): at rtol 1e-2 its relative error is noise (0.84 or 0.004
+  // depending on the contact solver's round-off); from rtol 1e-3 on, tightening cuts it tenfold.
+  CHECK(errors_B[2] < 0.1 * errors_B[1]);
+  CHECK(errors_B[3] < 0.1 * errors_B[1]);
 }
 
 TEST_CASE("B1 stiff (alpha = 1e-3): the implicit integrator finishes in bounded steps, Euler-210 says it is unstable",
