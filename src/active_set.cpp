@@ -1,12 +1,13 @@
 #include "rccm/active_set.hpp"
 
+#include <Eigen/LU>
+
 #include <cmath>
 
 namespace rccm {
 
 Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::vector<Rows>& pattern,
-                                          const Eigen::VectorXd& y) const {
-  const Eigen::VectorXd u = *pb.W0 * y + pb.q0;
+                                          const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
   const Eigen::VectorXd Rbar = y - (pb.D1 - pb.Dbeta).cwiseProduct(u);
   Eigen::VectorXd r(y.size());
   for (int i = 0; i < pb.size(); ++i) {
@@ -59,64 +60,38 @@ bool ActiveSetSystem::rows_moved(const ContactProblem& pb, Rows kind, int i) con
   return kind == Rows::Free ? spring : spring || std::abs(pb.mubar[i] - mubar0_[i]) > drift;
 }
 
-bool ActiveSetSystem::prepare_update(const ContactProblem& pb, const std::vector<Rows>& pattern) {
+bool ActiveSetSystem::update(const ContactProblem& pb, const std::vector<Rows>& pattern) {
   std::vector<int> changed;
-  for (std::size_t i = 0; i < pattern.size(); ++i) {
-    const int node = static_cast<int>(i);
-    if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], node)) changed.push_back(node);
-  }
-  const int c = 2 * static_cast<int>(changed.size()), m = static_cast<int>(A0_.rows());
-  if (c > max_changed_rows) return false;
-  if (c == 0) {  // the factorized matrix itself (Eigen's solves are undefined on 0 columns)
-    D_.resize(0, m);
-    return true;
-  }
-  // A = A0 + S D: rows 2i, 2i+1 of the changed nodes replaced (Sherman-Morrison-Woodbury);
-  // Z = A0^-1 S is the changed nodes' columns of the inverse.
-  D_.resize(c, m);
-  Z_.resize(m, c);
-  for (int k = 0; k < c / 2; ++k) {
+  for (int i = 0; i < pb.size(); ++i)
+    if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], i)) changed.push_back(i);
+  const Eigen::Index c = 2 * static_cast<Eigen::Index>(changed.size()), m = A0_.rows();
+  if (c == 0) return true;
+  if (2 * c > m) return false;  // a new factorization costs less
+  // A = A0 + S D with S the unit columns of the changed rows:
+  //   A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1,  Z = A0^-1 S (columns of the inverse).
+  Eigen::MatrixXd D(c, m), Z(m, c);
+  for (Eigen::Index k = 0; k < c / 2; ++k) {
     const int i = changed[k];
-    D_.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
-    Z_.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
+    D.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
+    Z.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
   }
-  capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_.lazyProduct(Z_));
+  const Eigen::PartialPivLU<Eigen::MatrixXd> capacitance(Eigen::MatrixXd::Identity(c, c) + D * Z);
+  const Eigen::MatrixXd correction = capacitance.solve(D * A0_inverse_);
+  if (!correction.allFinite()) return false;
+  A0_inverse_.noalias() -= Z * correction;
+  for (Eigen::Index k = 0; k < c / 2; ++k) {
+    const int i = changed[k];
+    A0_.middleRows<2>(2 * i) += D.middleRows<2>(2 * k);
+    factorized_[i] = pattern[i];
+    E0_.segment<2>(2 * i) = pb.D1.segment<2>(2 * i) - pb.Dbeta.segment<2>(2 * i);
+    mubar0_[i] = pb.mubar[i];
+  }
   return true;
 }
 
-Eigen::VectorXd ActiveSetSystem::apply_inverse(const Eigen::VectorXd& r) const {
-  Eigen::VectorXd x = A0_inverse_ * r;
-  if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
-  return x;
-}
-
-Eigen::MatrixXd ActiveSetSystem::matrix(const ContactProblem& pb, const std::vector<Rows>& pattern) const {
-  Eigen::MatrixXd A(pb.W0->rows(), pb.W0->cols());
-  for (int i = 0; i < pb.size(); ++i) A.middleRows<2>(2 * i) = rows(pb, pattern[i], i);
-  return A;
-}
-
-bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& pattern, Eigen::VectorXd& y) {
-  Eigen::VectorXd r = residual(pb, pattern, y);
-  const double r0 = r.norm();
-  if (r0 == 0) return true;
-  // Refinement with the factorization of an earlier beta and pattern (a few nodes changed:
-  // low-rank update): each step must gain a factor 10, unless y has stopped moving.
-  D_.resize(0, 0);
-  if (factorized_.size() == pattern.size() && prepare_update(pb, pattern)) {
-    double previous = r0;
-    for (int k = 0; k < 6; ++k) {
-      const Eigen::VectorXd dy = apply_inverse(r);
-      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy);
-      const double norm = r_next.norm(), step = dy.norm(), size = y.norm();
-      const bool still = step <= 1e-12 * size;
-      if (!std::isfinite(norm) || (norm > 0.1 * previous && !still)) break;  // stale: factorize afresh
-      y += dy, r = r_next, previous = norm;
-      if (still || norm <= 1e-13 * r0) return true;
-    }
-  }
-  D_.resize(0, 0);
-  A0_ = matrix(pb, pattern);
+bool ActiveSetSystem::factorize(const ContactProblem& pb, const std::vector<Rows>& pattern) {
+  A0_.resize(pb.W0->rows(), pb.W0->cols());
+  for (int i = 0; i < pb.size(); ++i) A0_.middleRows<2>(2 * i) = rows(pb, pattern[i], i);
   A0_inverse_ = Eigen::PartialPivLU<Eigen::MatrixXd>(A0_).inverse();
   ++factorizations_;
   if (!A0_inverse_.allFinite()) {
@@ -126,7 +101,34 @@ bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& p
   factorized_ = pattern;
   E0_ = pb.D1 - pb.Dbeta;
   mubar0_ = pb.mubar;
+  return true;
+}
+
+bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& pattern, Eigen::VectorXd& y,
+                            Eigen::VectorXd& u) {
+  const Eigen::MatrixXd& W = *pb.W0;
+  Eigen::VectorXd r = residual(pb, pattern, y, u);
+  const double r0 = r.norm();
+  if (r0 == 0) return true;
+  // Refinement with the updated inverse: each step must gain a factor 10, unless y has
+  // stopped moving; otherwise the inverse has gone stale and is computed afresh.
+  if (factorized_.size() == pattern.size() && update(pb, pattern)) {
+    double previous = r0;
+    for (int k = 0; k < 6; ++k) {
+      const Eigen::VectorXd dy = A0_inverse_ * r;
+      const Eigen::VectorXd u_next = u + W * dy;
+      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy, u_next);
+      const double norm = r_next.norm(), step = dy.norm(), size = y.norm();
+      const bool still = step <= 1e-12 * size;
+      if (!std::isfinite(norm) || (norm > 0.1 * previous && !still)) break;
+      y += dy, u = u_next, r = r_next, previous = norm;
+      if (still || norm <= 1e-13 * r0) return true;
+    }
+  }
+  if (!factorize(pb, pattern)) return false;
   y += A0_inverse_ * r;
+  u.noalias() = W * y;
+  u += pb.q0;
   return true;
 }
 

@@ -162,11 +162,9 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
         return s;
       }
       const std::vector<Rows> pattern = pattern_of(branch, blocks, R_branch);
-      if (pattern == tried || !active_set_.solve(pb, pattern, s.y)) break;
+      if (pattern == tried || !active_set_.solve(pb, pattern, s.y, s.u)) break;
       tried = pattern;
       ++s.exact_solves;
-      s.u.noalias() = W * s.y;
-      s.u += pb.q0;
       s.Rbar = s.y - E.cwiseProduct(s.u);
     }
   }
@@ -245,10 +243,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
     ++since_exact;
     if (params_.active_set && nc <= params_.active_set_max_nodes && repeats >= 1 && (pattern != solved_pattern || since_exact >= 3) &&
         s.exact_solves < max_exact_solves) {
-      if (active_set_.solve(pb, pattern, s.y)) {
-        s.u = W * s.y + pb.q0;
-        s.Rbar = s.y - E.cwiseProduct(s.u);
-      }
+      if (active_set_.solve(pb, pattern, s.y, s.u)) s.Rbar = s.y - E.cwiseProduct(s.u);
       since_exact = 0;
       solved_pattern = pattern;
       ++s.exact_solves;
