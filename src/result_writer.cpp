@@ -14,12 +14,14 @@ namespace rccm {
 
 namespace {
 
-/// Appends ",value" with enough digits to read back what was computed (to 1e-10).
-void cell(std::ostream& out, double v) {
+/// Writes a value with enough digits to read back what was computed (to 1e-10): the first
+/// cell of a line, then ",value" cells.
+void first_cell(std::ostream& out, double v) {
   char buf[32];
-  std::snprintf(buf, sizeof buf, ",%.12g", v);
+  std::snprintf(buf, sizeof buf, "%.12g", v);
   out << buf;
 }
+void cell(std::ostream& out, double v) { first_cell(out << ",", v); }
 
 std::string load_label(const Config& cfg, std::size_t k) {
   const LoadParams& p = cfg.loads[k];
@@ -42,7 +44,7 @@ std::ofstream open(const std::string& path, std::ios::openmode mode = std::ios::
 
 std::string interface_file(double t) {
   char name[64];
-  std::snprintf(name, sizeof name, "interface_t%g.csv", t);
+  std::snprintf(name, sizeof name, "interface_t%.12g.csv", t);  // the time as in history.csv
   return name;
 }
 
@@ -112,7 +114,7 @@ void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyT
   int count[3] = {0, 0, 0};
   for (Status x : a.state.status) ++count[static_cast<int>(x)];
   std::ostringstream h;
-  h << a.t;
+  first_cell(h, a.t);
   for (double v : {a.dt, double(a.counts.contact_solves),
                    double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves), double(a.counts.max_sweeps),
                    a.solution.residual, a.state.beta.minCoeff(), double(count[1]), double(count[2]), double(count[0]),
@@ -128,7 +130,7 @@ void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyT
   write_line(history_, h);
 
   std::ostringstream c;
-  c << a.t;
+  first_cell(c, a.t);
   for (std::size_t k = 0; k < b.value.size(); ++k) cell(c, b.value[k]), cell(c, b.force[k]);
   for (double v : {e.external_work, e.strain_energy, e.free_energy_change, e.damage_dissipation,
                    e.friction_dissipation, e.normal_contact_work, e.imbalance()})
