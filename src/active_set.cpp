@@ -1,29 +1,42 @@
 #include "rccm/active_set.hpp"
 
-#include <Eigen/LU>
+#include "rccm/gmres.hpp"
 
 #include <cmath>
 
 namespace rccm {
 
-Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::vector<Rows>& pattern,
-                                          const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
+namespace {
+double slide_sign(Rows kind) { return kind == Rows::SlidePositive ? 1.0 : -1.0; }
+}  // namespace
+
+Eigen::VectorXd ActiveSetSystem::constraint_values(const ContactProblem& pb, const std::vector<Rows>& pattern,
+                                                   const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
   const Eigen::VectorXd Rbar = y - (pb.D1 - pb.Dbeta).cwiseProduct(u);
-  Eigen::VectorXd r(y.size());
+  Eigen::VectorXd v(y.size());
   for (int i = 0; i < pb.size(); ++i) {
     const int t = 2 * i, n = 2 * i + 1;
     switch (pattern[i]) {
       case Rows::Free:
-        r[t] = -Rbar[t], r[n] = -Rbar[n];
+        v[t] = Rbar[t], v[n] = Rbar[n];
         break;
       case Rows::Stick:
-        r[t] = pb.ut_ref[i] - u[t], r[n] = -pb.g0[i] - u[n];
+        v[t] = u[t], v[n] = u[n];
         break;
-      default: {
-        const double sign = pattern[i] == Rows::SlidePositive ? 1.0 : -1.0;
-        r[t] = -(Rbar[t] - sign * pb.mubar[i] * Rbar[n]), r[n] = -pb.g0[i] - u[n];
-      }
+      default:
+        v[t] = Rbar[t] - slide_sign(pattern[i]) * pb.mubar[i] * Rbar[n], v[n] = u[n];
     }
+  }
+  return v;
+}
+
+Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::vector<Rows>& pattern,
+                                          const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd r = -constraint_values(pb, pattern, y, u);
+  for (int i = 0; i < pb.size(); ++i) {
+    if (pattern[i] == Rows::Free) continue;
+    if (pattern[i] == Rows::Stick) r[2 * i] += pb.ut_ref[i];  // no slip
+    r[2 * i + 1] -= pb.g0[i];                                  // closed gap
   }
   return r;
 }
@@ -31,9 +44,11 @@ Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::v
 Eigen::Matrix<double, 2, Eigen::Dynamic> ActiveSetSystem::rows(const ContactProblem& pb, Rows kind, int i) const {
   const Eigen::MatrixXd& W = *pb.W0;
   const int t = 2 * i, n = 2 * i + 1;
+  // Row c of W0 read as its column (W0 is symmetric: contiguous in memory).
+  const auto w_row = [&](int c) -> Eigen::RowVectorXd { return W.col(c).transpose(); };
   // Row of Rbar_c as a function of y: e_c - E_c W0_c.
   const auto rbar_row = [&](int c) -> Eigen::RowVectorXd {
-    Eigen::RowVectorXd row = -(pb.D1[c] - pb.Dbeta[c]) * W.row(c);
+    Eigen::RowVectorXd row = -(pb.D1[c] - pb.Dbeta[c]) * w_row(c);
     row[c] += 1.0;
     return row;
   };
@@ -43,12 +58,10 @@ Eigen::Matrix<double, 2, Eigen::Dynamic> ActiveSetSystem::rows(const ContactProb
       A.row(0) = rbar_row(t), A.row(1) = rbar_row(n);
       break;
     case Rows::Stick:
-      A.row(0) = W.row(t), A.row(1) = W.row(n);
+      A.row(0) = w_row(t), A.row(1) = w_row(n);
       break;
-    default: {
-      const double sign = kind == Rows::SlidePositive ? 1.0 : -1.0;
-      A.row(0) = rbar_row(t) - sign * pb.mubar[i] * rbar_row(n), A.row(1) = W.row(n);
-    }
+    default:
+      A.row(0) = rbar_row(t) - slide_sign(kind) * pb.mubar[i] * rbar_row(n), A.row(1) = w_row(n);
   }
   return A;
 }
@@ -65,28 +78,37 @@ bool ActiveSetSystem::update(const ContactProblem& pb, const std::vector<Rows>& 
   for (int i = 0; i < pb.size(); ++i)
     if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], i)) changed.push_back(i);
   const Eigen::Index c = 2 * static_cast<Eigen::Index>(changed.size()), m = A0_.rows();
+  D_.resize(c, m);
   if (c == 0) return true;
   if (2 * c > m) return false;  // a new factorization costs less
-  // A = A0 + S D with S the unit columns of the changed rows:
-  //   A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1,  Z = A0^-1 S (columns of the inverse).
-  Eigen::MatrixXd D(c, m), Z(m, c);
+  // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1.
+  Z_.resize(m, c);
   for (Eigen::Index k = 0; k < c / 2; ++k) {
     const int i = changed[k];
-    D.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
-    Z.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
+    D_.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
+    Z_.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
   }
-  const Eigen::PartialPivLU<Eigen::MatrixXd> capacitance(Eigen::MatrixXd::Identity(c, c) + D * Z);
-  const Eigen::MatrixXd correction = capacitance.solve(D * A0_inverse_);
+  capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
+  // Pending while small (c^2 m per solve, c m per product); beyond m/16 rows folded into A0.
+  if (c <= m / 8) return true;
+  const Eigen::MatrixXd correction = capacitance_.solve(D_ * A0_inverse_);
   if (!correction.allFinite()) return false;
-  A0_inverse_.noalias() -= Z * correction;
+  A0_inverse_.noalias() -= Z_ * correction;
   for (Eigen::Index k = 0; k < c / 2; ++k) {
     const int i = changed[k];
-    A0_.middleRows<2>(2 * i) += D.middleRows<2>(2 * k);
+    A0_.middleRows<2>(2 * i) += D_.middleRows<2>(2 * k);
     factorized_[i] = pattern[i];
     E0_.segment<2>(2 * i) = pb.D1.segment<2>(2 * i) - pb.Dbeta.segment<2>(2 * i);
     mubar0_[i] = pb.mubar[i];
   }
+  D_.resize(0, m);
   return true;
+}
+
+Eigen::VectorXd ActiveSetSystem::apply_inverse(const Eigen::VectorXd& r) const {
+  Eigen::VectorXd x = A0_inverse_ * r;
+  if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
+  return x;
 }
 
 bool ActiveSetSystem::factorize(const ContactProblem& pb, const std::vector<Rows>& pattern) {
@@ -101,6 +123,7 @@ bool ActiveSetSystem::factorize(const ContactProblem& pb, const std::vector<Rows
   factorized_ = pattern;
   E0_ = pb.D1 - pb.Dbeta;
   mubar0_ = pb.mubar;
+  D_.resize(0, A0_.rows());
   return true;
 }
 
@@ -110,20 +133,44 @@ bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& p
   Eigen::VectorXd r = residual(pb, pattern, y, u);
   const double r0 = r.norm();
   if (r0 == 0) return true;
-  // Refinement with the updated inverse: each step must gain a factor 10, unless y has
-  // stopped moving; otherwise the inverse has gone stale and is computed afresh.
   if (factorized_.size() == pattern.size() && update(pb, pattern)) {
+    // A correction is taken when it gains a factor 10 on the residual, or leaves y unmoved.
+    enum class Outcome { Converged, Progress, Stalled };
     double previous = r0;
-    for (int k = 0; k < 6; ++k) {
-      const Eigen::VectorXd dy = A0_inverse_ * r;
-      const Eigen::VectorXd u_next = u + W * dy;
-      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy, u_next);
-      const double norm = r_next.norm(), step = dy.norm(), size = y.norm();
-      const bool still = step <= 1e-12 * size;
-      if (!std::isfinite(norm) || (norm > 0.1 * previous && !still)) break;
-      y += dy, u = u_next, r = r_next, previous = norm;
-      if (still || norm <= 1e-13 * r0) return true;
+    const auto take = [&](const Eigen::VectorXd& dy, const Eigen::VectorXd& du) {
+      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy, u + du);
+      const double norm = r_next.norm();
+      const bool still = dy.norm() <= 1e-12 * y.norm();
+      if (!std::isfinite(norm) || (norm > 0.1 * previous && !still)) return Outcome::Stalled;
+      y += dy, u += du, r = r_next, previous = norm;
+      return still || norm <= 1e-13 * r0 ? Outcome::Converged : Outcome::Progress;
+    };
+    // Refinement with the corrected inverse: two products of W0's size per step.
+    Outcome outcome = Outcome::Progress;
+    for (int k = 0; k < 6 && outcome == Outcome::Progress; ++k) {
+      const Eigen::VectorXd dy = apply_inverse(r);
+      outcome = take(dy, W * dy);
     }
+    // Stalled (the inverse's round-off, or a drift it does not absorb): GMRES with the same
+    // preconditioner, before a new factorization. The products W0 M v it forms are kept, so
+    // that u follows y without one more product with W0.
+    if (outcome != Outcome::Converged) {
+      const int max_iterations = 30;
+      Eigen::MatrixXd Wz(W.rows(), max_iterations);
+      int products = 0;
+      const LinearMap A = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
+        Wz.col(products).noalias() = W * z;
+        return constraint_values(pb, pattern, z, Wz.col(products++));
+      };
+      const LinearMap M = [&](const Eigen::VectorXd& v) { return apply_inverse(v); };
+      outcome = Outcome::Progress;
+      for (int pass = 0; pass < 3 && outcome == Outcome::Progress; ++pass) {
+        products = 0;
+        const GmresResult g = gmres(A, M, r, 1e-6, max_iterations);
+        outcome = take(g.x, Wz.leftCols(g.iterations) * g.coefficients);
+      }
+    }
+    if (outcome == Outcome::Converged) return true;
   }
   if (!factorize(pb, pattern)) return false;
   y += A0_inverse_ * r;

@@ -3,17 +3,21 @@
 //   separated  Rbar_i = 0,
 //   stick      u_i = (ut_ref_i, -g0_i),
 //   slide      u_n,i = -g0_i  and  Rbar_t,i = sign_i mubar_i Rbar_n,i,
-// with u = W0 y + q0 and Rbar = y - E u in the unknown y. Its residual costs one product
-// with W0. The system keeps an explicit inverse of the matrix of an earlier pattern and beta:
-// the rows of the nodes whose status changed or whose beta moved (E, mubar) are folded into
-// it by a rank-2c (Sherman-Morrison-Woodbury) update, 2 c m^2 operations instead of the
-// 2 m^3 of a new factorization and inverse, and iterative refinement absorbs the small
-// drift of the other rows. A new factorization only when refinement stalls or most rows changed.
+// with u = W0 y + q0 and Rbar = y - E u in the unknown y. Its residual and its product
+// with a vector cost one product with W0 each.
+// The system keeps A0, the matrix of an earlier pattern and beta, and its explicit inverse.
+// The rows of the nodes whose status changed or whose beta moved (E, mubar) since then are a
+// low-rank (Sherman-Morrison-Woodbury) correction of that inverse, kept pending while their
+// count is small (c^2 m per solve) and folded into the inverse beyond (2 c m^2 once, instead
+// of the 2 m^3 of a new factorization and inverse). GMRES preconditioned by that corrected
+// inverse absorbs the small drift of the other rows and the inverse's own round-off. A new
+// factorization only when GMRES stalls or most rows changed.
 #pragma once
 
 #include "rccm/contact_problem.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <cstdint>
 #include <vector>
@@ -34,20 +38,31 @@ class ActiveSetSystem {
   const std::vector<Rows>& pattern() const { return factorized_; }  // of the factorized matrix
 
  private:
+  /// The left-hand sides of the pattern's rows at (y, u), with Rbar = y - E u: Rbar (separated),
+  /// u (stick), Rbar_t - sign mubar Rbar_n and u_n (slide). At (v, W0 v) it is the matrix times v.
+  Eigen::VectorXd constraint_values(const ContactProblem& pb, const std::vector<Rows>& pattern,
+                                    const Eigen::VectorXd& y, const Eigen::VectorXd& u) const;
+  /// Right-hand sides minus constraint_values: zero at the solution.
   Eigen::VectorXd residual(const ContactProblem& pb, const std::vector<Rows>& pattern, const Eigen::VectorXd& y,
                            const Eigen::VectorXd& u) const;
   Eigen::Matrix<double, 2, Eigen::Dynamic> rows(const ContactProblem& pb, Rows kind, int i) const;
-  /// Whether node i's rows moved since they were factorized by more than refinement absorbs.
+  /// Whether node i's rows moved since they were factorized by more than GMRES absorbs cheaply.
   bool rows_moved(const ContactProblem& pb, Rows kind, int i) const;
-  /// Folds the changed nodes' rows into A0 and its inverse; false when a new factorization is due.
+  /// Sets up the pending correction for the changed nodes, or folds it into A0 and its
+  /// inverse when it is large; false when a new factorization is due.
   bool update(const ContactProblem& pb, const std::vector<Rows>& pattern);
+  /// The inverse of A0 with the pending correction, times r.
+  Eigen::VectorXd apply_inverse(const Eigen::VectorXd& r) const;
   /// A0 and its inverse afresh; false when A0 is singular.
   bool factorize(const ContactProblem& pb, const std::vector<Rows>& pattern);
 
-  static constexpr double drift = 1e-3;  // relative row change left to refinement
+  static constexpr double drift = 1e-3;  // relative row change left to GMRES
   std::vector<Rows> factorized_;         // the pattern of A0_ (empty: none)
   Eigen::VectorXd E0_, mubar0_;          // the E = D1 - D(beta) and mubar of A0_'s rows
   Eigen::MatrixXd A0_, A0_inverse_;
+  // Pending correction A = A0 + S D (S: unit columns of the changed rows), Z = A0^-1 S.
+  Eigen::MatrixXd D_, Z_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // I + D Z
   int factorizations_ = 0;
 };
 
