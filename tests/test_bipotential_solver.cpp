@@ -84,6 +84,42 @@ TEST_CASE("random problems: Signorini and Coulomb hold, both forms agree", "[sol
     }
 }
 
+TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain Gauss-Seidel does", "[solver]") {
+  // A sequence of nearby problems (load, beta and friction drifting, as between the stages
+  // of the integrator), each started from the previous solution with one solver object that
+  // keeps its factorization, against cold plain Gauss-Seidel.
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int trial = 0; trial < 12; ++trial) {
+    RandomProblem rp = random_problem(4 + trial, gen, true);
+    const BipotentialSolver warm(params(SweepForm::GaussSeidel, true));
+    ContactSolution previous = warm.solve(rp.pb);
+    REQUIRE(previous.converged);
+    int exact_solves = 0, sweeps = 0;
+    for (int step = 0; step < 20; ++step) {
+      rp.pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
+      for (Eigen::Index c = 0; c < rp.pb.Dbeta.size(); ++c)
+        rp.pb.Dbeta[c] = std::clamp(rp.pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, rp.pb.D1[c]);
+      rp.pb.mubar = (rp.pb.mubar.array() + 0.005).min(0.5);
+      const ContactSolution s = warm.solve(rp.pb, previous.Rbar, previous.u);
+      const ContactSolution reference = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(rp.pb);
+      INFO("trial " << trial << " step " << step);
+      REQUIRE(s.converged);
+      REQUIRE(reference.converged);
+      const Eigen::VectorXd y = s.Rbar + (rp.pb.D1 - rp.pb.Dbeta).cwiseProduct(s.u);
+      REQUIRE((rp.W * y + rp.pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));
+      REQUIRE(residuals(rp.pb, s).max() <= 1e-8);
+      REQUIRE((s.Rbar - reference.Rbar).norm() <= 1e-8 * (1 + reference.Rbar.norm()));
+      exact_solves += s.exact_solves;
+      sweeps += s.iterations;
+      previous = s;
+    }
+    // Warm: a verifying pass, an exact step and a second pass, rarely more.
+    INFO("trial " << trial << ": " << sweeps << " passes and sweeps, " << exact_solves << " exact solves in 20 solves");
+    CHECK(sweeps <= 20 * 3);
+  }
+}
+
 TEST_CASE("a single free node is solved exactly in each regime", "[solver]") {
   // One node, W = diag(1, 1), no springs, mubar = 0.5: u = R + q.
   Eigen::MatrixXd W = Eigen::MatrixXd::Identity(2, 2);
