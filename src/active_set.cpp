@@ -81,17 +81,24 @@ bool ActiveSetSystem::update(const ContactProblem& pb, const std::vector<Rows>& 
   D_.resize(c, m);
   if (c == 0) return true;
   if (2 * c > m) return false;  // a new factorization costs less
-  // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1.
+  // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1
+  // (gathered from the inverse once there is one, c solves with the LU before).
+  if (++reuses_ >= 2) inverse();
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(inverse_ready_ ? 0 : m, c);
   Z_.resize(m, c);
   for (Eigen::Index k = 0; k < c / 2; ++k) {
     const int i = changed[k];
     D_.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
-    Z_.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
+    if (inverse_ready_)
+      Z_.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
+    else
+      S(2 * i, 2 * k) = S(2 * i + 1, 2 * k + 1) = 1.0;
   }
+  if (!inverse_ready_) Z_ = lu_.solve(S);
   capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
   // Pending while small (c^2 m per solve, c m per product); beyond m/16 rows folded into A0.
   if (c <= m / 8) return true;
-  const Eigen::MatrixXd correction = capacitance_.solve(D_ * A0_inverse_);
+  const Eigen::MatrixXd correction = capacitance_.solve(D_ * inverse());
   if (!correction.allFinite()) return false;
   A0_inverse_.noalias() -= Z_ * correction;
   for (Eigen::Index k = 0; k < c / 2; ++k) {
@@ -105,26 +112,29 @@ bool ActiveSetSystem::update(const ContactProblem& pb, const std::vector<Rows>& 
   return true;
 }
 
-Eigen::VectorXd ActiveSetSystem::apply_inverse(const Eigen::VectorXd& r) const {
-  Eigen::VectorXd x = A0_inverse_ * r;
+Eigen::VectorXd ActiveSetSystem::apply_inverse(const Eigen::VectorXd& r) {
+  Eigen::VectorXd x = inverse_ready_ ? Eigen::VectorXd(A0_inverse_ * r) : Eigen::VectorXd(lu_.solve(r));
   if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
   return x;
 }
 
-bool ActiveSetSystem::factorize(const ContactProblem& pb, const std::vector<Rows>& pattern) {
+const Eigen::MatrixXd& ActiveSetSystem::inverse() {
+  if (!inverse_ready_) A0_inverse_ = lu_.inverse();
+  inverse_ready_ = true;
+  return A0_inverse_;
+}
+
+void ActiveSetSystem::factorize(const ContactProblem& pb, const std::vector<Rows>& pattern) {
   A0_.resize(pb.W0->rows(), pb.W0->cols());
   for (int i = 0; i < pb.size(); ++i) A0_.middleRows<2>(2 * i) = rows(pb, pattern[i], i);
-  A0_inverse_ = Eigen::PartialPivLU<Eigen::MatrixXd>(A0_).inverse();
+  lu_.compute(A0_);
+  inverse_ready_ = false;
+  reuses_ = 0;
   ++factorizations_;
-  if (!A0_inverse_.allFinite()) {
-    factorized_.clear();
-    return false;
-  }
   factorized_ = pattern;
   E0_ = pb.D1 - pb.Dbeta;
   mubar0_ = pb.mubar;
   D_.resize(0, A0_.rows());
-  return true;
 }
 
 bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& pattern, Eigen::VectorXd& y,
@@ -172,8 +182,13 @@ bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& p
     }
     if (outcome == Outcome::Converged) return true;
   }
-  if (!factorize(pb, pattern)) return false;
-  y += A0_inverse_ * r;
+  factorize(pb, pattern);
+  const Eigen::VectorXd dy = lu_.solve(r);
+  if (!dy.allFinite()) {  // singular
+    factorized_.clear();
+    return false;
+  }
+  y += dy;
   u.noalias() = W * y;
   u += pb.q0;
   return true;

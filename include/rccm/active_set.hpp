@@ -52,14 +52,21 @@ class ActiveSetSystem {
   /// inverse when it is large; false when a new factorization is due.
   bool update(const ContactProblem& pb, const std::vector<Rows>& pattern);
   /// The inverse of A0 with the pending correction, times r.
-  Eigen::VectorXd apply_inverse(const Eigen::VectorXd& r) const;
-  /// A0 and its inverse afresh; false when A0 is singular.
-  bool factorize(const ContactProblem& pb, const std::vector<Rows>& pattern);
+  Eigen::VectorXd apply_inverse(const Eigen::VectorXd& r);
+  /// A0 and its LU afresh.
+  void factorize(const ContactProblem& pb, const std::vector<Rows>& pattern);
+  /// The inverse of A0, from its LU. Computed once the factorization is reused a second time
+  /// (then every use is one product); a solve that needs it once or twice, a cold one, uses
+  /// the LU and pays no inverse.
+  const Eigen::MatrixXd& inverse();
 
   static constexpr double drift = 1e-3;  // relative row change left to GMRES
   std::vector<Rows> factorized_;         // the pattern of A0_ (empty: none)
   Eigen::VectorXd E0_, mubar0_;          // the E = D1 - D(beta) and mubar of A0_'s rows
   Eigen::MatrixXd A0_, A0_inverse_;
+  Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of A0_ as factorized (before any fold)
+  bool inverse_ready_ = false;
+  int reuses_ = 0;  // updates since the factorization
   // Pending correction A = A0 + S D (S: unit columns of the changed rows), Z = A0^-1 S.
   Eigen::MatrixXd D_, Z_;
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // I + D Z
