@@ -45,6 +45,7 @@ GmresResult gmres(const LinearMap& A, const LinearMap& M, const Eigen::VectorXd&
   }
   out.iterations = static_cast<int>(k);
   out.residual = std::abs(g[k]);
+  if (k == 0) return out;  // A M v_0 = 0 (Eigen's solves are undefined on 0 columns)
   out.coefficients = H.topLeftCorner(k, k).triangularView<Eigen::Upper>().solve(g.head(k));
   out.x = Z.leftCols(k) * out.coefficients;
   return out;

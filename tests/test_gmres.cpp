@@ -38,3 +38,13 @@ TEST_CASE("GMRES: a zero right-hand side gives x = 0 without calling A", "[gmres
   CHECK(r.x.isZero(0.0));
   CHECK(calls == 0);
 }
+
+TEST_CASE("GMRES: a singular operator on b stops at once with x = 0", "[gmres]") {
+  const LinearMap zero = [](const Eigen::VectorXd& v) -> Eigen::VectorXd { return Eigen::VectorXd::Zero(v.size()); };
+  const LinearMap identity = [](const Eigen::VectorXd& v) { return v; };
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(4);
+  const GmresResult r = gmres(zero, identity, b, 1e-12, 4);
+  CHECK(r.iterations == 0);
+  CHECK(r.x.isZero(0.0));
+  CHECK(r.residual == Approx(b.norm()));
+}

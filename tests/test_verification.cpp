@@ -224,7 +224,7 @@ TEST_CASE("rotating the whole problem and the foundation normal leaves the inter
   }
 }
 
-TEST_CASE("B1 under mesh refinement: beta along the interface at t1 converges", "[.long][verification]") {
+TEST_CASE("B1 under mesh refinement: beta along the interface at t1 converges", "[.refinement][verification]") {
   // Meshes 32 x 2 to 256 x 16 (k = 1, 2, 4, 8): beta at the coarse nodes, compared between
   // successive meshes in the L1 norm along the interface, and the debonded length.
   struct Level {
