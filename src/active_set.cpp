@@ -96,7 +96,7 @@ bool ActiveSetSystem::update(const ContactProblem& pb, const std::vector<Rows>& 
   }
   if (!inverse_ready_) Z_ = lu_.solve(S);
   capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
-  // Pending while small (c^2 m per solve, c m per product); beyond m/16 rows folded into A0.
+  // Pending while small (c^2 m per solve, c m per product); beyond m/8 rows folded into A0.
   if (c <= m / 8) return true;
   const Eigen::MatrixXd correction = capacitance_.solve(D_ * inverse());
   if (!correction.allFinite()) return false;
@@ -161,8 +161,8 @@ bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& p
       const Eigen::VectorXd dy = apply_inverse(r);
       outcome = take(dy, W * dy);
     }
-    // Stalled (the inverse's round-off, or a drift it does not absorb): GMRES with the same
-    // preconditioner, before a new factorization. The products W0 M v it forms are kept, so
+    // Stalled or slow (the inverse's round-off, or a drift it does not absorb): GMRES with the
+    // same preconditioner, before a new factorization. The products W0 M v it forms are kept, so
     // that u follows y without one more product with W0.
     if (outcome != Outcome::Converged) {
       const int max_iterations = 30;
@@ -177,7 +177,7 @@ bool ActiveSetSystem::solve(const ContactProblem& pb, const std::vector<Rows>& p
       for (int pass = 0; pass < 3 && outcome == Outcome::Progress; ++pass) {
         products = 0;
         const GmresResult g = gmres(A, M, r, 1e-6, max_iterations);
-        outcome = take(g.x, Wz.leftCols(g.iterations) * g.coefficients);
+        outcome = g.iterations == 0 ? Outcome::Stalled : take(g.x, Wz.leftCols(g.iterations) * g.coefficients);
       }
     }
     if (outcome == Outcome::Converged) return true;
