@@ -12,19 +12,19 @@ double slide_sign(Rows kind) { return kind == Rows::SlidePositive ? 1.0 : -1.0; 
 
 Eigen::VectorXd ActiveSetSystem::constraint_values(const ContactProblem& pb, const std::vector<Rows>& pattern,
                                                    const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
-  const Eigen::VectorXd Rbar = y - (pb.D1 - pb.Dbeta).cwiseProduct(u);
+  const auto Rbar = [&](int c) { return y[c] - (pb.D1[c] - pb.Dbeta[c]) * u[c]; };
   Eigen::VectorXd v(y.size());
   for (int i = 0; i < pb.size(); ++i) {
     const int t = 2 * i, n = 2 * i + 1;
     switch (pattern[i]) {
       case Rows::Free:
-        v[t] = Rbar[t], v[n] = Rbar[n];
+        v[t] = Rbar(t), v[n] = Rbar(n);
         break;
       case Rows::Stick:
         v[t] = u[t], v[n] = u[n];
         break;
       default:
-        v[t] = Rbar[t] - slide_sign(pattern[i]) * pb.mubar[i] * Rbar[n], v[n] = u[n];
+        v[t] = Rbar(t) - slide_sign(pattern[i]) * pb.mubar[i] * Rbar(n), v[n] = u[n];
     }
   }
   return v;
@@ -32,7 +32,8 @@ Eigen::VectorXd ActiveSetSystem::constraint_values(const ContactProblem& pb, con
 
 Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::vector<Rows>& pattern,
                                           const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
-  Eigen::VectorXd r = -constraint_values(pb, pattern, y, u);
+  Eigen::VectorXd r = constraint_values(pb, pattern, y, u);
+  r = -r;
   for (int i = 0; i < pb.size(); ++i) {
     if (pattern[i] == Rows::Free) continue;
     if (pattern[i] == Rows::Stick) r[2 * i] += pb.ut_ref[i];  // no slip
@@ -41,29 +42,27 @@ Eigen::VectorXd ActiveSetSystem::residual(const ContactProblem& pb, const std::v
   return r;
 }
 
-Eigen::Matrix<double, 2, Eigen::Dynamic> ActiveSetSystem::rows(const ContactProblem& pb, Rows kind, int i) const {
+void ActiveSetSystem::rows(const ContactProblem& pb, Rows kind, int i, RowPair out) const {
   const Eigen::MatrixXd& W = *pb.W0;
   const int t = 2 * i, n = 2 * i + 1;
-  // Row c of W0 read as its column (W0 is symmetric: contiguous in memory).
-  const auto w_row = [&](int c) -> Eigen::RowVectorXd { return W.col(c).transpose(); };
-  // Row of Rbar_c as a function of y: e_c - E_c W0_c.
-  const auto rbar_row = [&](int c) -> Eigen::RowVectorXd {
-    Eigen::RowVectorXd row = -(pb.D1[c] - pb.Dbeta[c]) * w_row(c);
-    row[c] += 1.0;
-    return row;
-  };
-  Eigen::Matrix<double, 2, Eigen::Dynamic> A(2, W.cols());
+  const double Et = pb.D1[t] - pb.Dbeta[t], En = pb.D1[n] - pb.Dbeta[n];
+  // Row c of W0 read as its column (W0 is symmetric: contiguous in memory). The row of Rbar_c
+  // as a function of y is e_c - E_c W0_c.
   switch (kind) {
     case Rows::Free:
-      A.row(0) = rbar_row(t), A.row(1) = rbar_row(n);
+      out.row(0) = -Et * W.col(t).transpose(), out(0, t) += 1.0;
+      out.row(1) = -En * W.col(n).transpose(), out(1, n) += 1.0;
       break;
     case Rows::Stick:
-      A.row(0) = w_row(t), A.row(1) = w_row(n);
+      out.row(0) = W.col(t).transpose(), out.row(1) = W.col(n).transpose();
       break;
-    default:
-      A.row(0) = rbar_row(t) - slide_sign(kind) * pb.mubar[i] * rbar_row(n), A.row(1) = w_row(n);
+    default: {
+      const double s = slide_sign(kind) * pb.mubar[i];  // Rbar_t - s Rbar_n
+      out.row(0) = -Et * W.col(t).transpose() + s * En * W.col(n).transpose();
+      out(0, t) += 1.0, out(0, n) -= s;
+      out.row(1) = W.col(n).transpose();
+    }
   }
-  return A;
 }
 
 bool ActiveSetSystem::rows_moved(const ContactProblem& pb, Rows kind, int i) const {
@@ -88,7 +87,8 @@ bool ActiveSetSystem::update(const ContactProblem& pb, const std::vector<Rows>& 
   Z_.resize(m, c);
   for (Eigen::Index k = 0; k < c / 2; ++k) {
     const int i = changed[k];
-    D_.middleRows<2>(2 * k) = rows(pb, pattern[i], i) - A0_.middleRows<2>(2 * i);
+    rows(pb, pattern[i], i, D_.middleRows<2>(2 * k));
+    D_.middleRows<2>(2 * k) -= A0_.middleRows<2>(2 * i);
     if (inverse_ready_)
       Z_.middleCols<2>(2 * k) = A0_inverse_.middleCols<2>(2 * i);
     else
@@ -126,7 +126,7 @@ const Eigen::MatrixXd& ActiveSetSystem::inverse() {
 
 void ActiveSetSystem::factorize(const ContactProblem& pb, const std::vector<Rows>& pattern) {
   A0_.resize(pb.W0->rows(), pb.W0->cols());
-  for (int i = 0; i < pb.size(); ++i) A0_.middleRows<2>(2 * i) = rows(pb, pattern[i], i);
+  for (int i = 0; i < pb.size(); ++i) rows(pb, pattern[i], i, A0_.middleRows<2>(2 * i));
   lu_.compute(A0_);
   inverse_ready_ = false;
   reuses_ = 0;

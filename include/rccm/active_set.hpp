@@ -45,7 +45,9 @@ class ActiveSetSystem {
   /// Right-hand sides minus constraint_values: zero at the solution.
   Eigen::VectorXd residual(const ContactProblem& pb, const std::vector<Rows>& pattern, const Eigen::VectorXd& y,
                            const Eigen::VectorXd& u) const;
-  Eigen::Matrix<double, 2, Eigen::Dynamic> rows(const ContactProblem& pb, Rows kind, int i) const;
+  /// Node i's two rows of the pattern's matrix, written into `out`.
+  using RowPair = Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
+  void rows(const ContactProblem& pb, Rows kind, int i, RowPair out) const;
   /// Whether node i's rows moved since they were factorized by more than GMRES absorbs cheaply.
   bool rows_moved(const ContactProblem& pb, Rows kind, int i) const;
   /// Sets up the pending correction for the changed nodes, or folds it into A0 and its
