@@ -149,8 +149,8 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
   // the nearby solution is usually still right, and one exact solve of its linear problem
   // leaves a single verifying pass. A pattern that does not settle in a few steps is left to
   // the Gauss-Seidel sweeps below.
-  const bool exact_first = gauss_seidel && params_.active_set && nc <= params_.active_set_max_nodes && Rbar_start.size() == m;
-  if (exact_first) {
+  const bool exact_step = params_.active_set && nc <= params_.active_set_max_nodes;
+  if (exact_step && gauss_seidel && Rbar_start.size() == m) {
     std::vector<Rows> tried;
     for (int k = 0; k < max_exact_first && s.iterations < params_.max_iterations; ++k) {
       ++s.iterations;
@@ -241,8 +241,7 @@ ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::
     repeats = pattern == previous_pattern ? repeats + 1 : 0;
     previous_pattern = pattern;
     ++since_exact;
-    if (params_.active_set && nc <= params_.active_set_max_nodes && repeats >= 1 && (pattern != solved_pattern || since_exact >= 3) &&
-        s.exact_solves < max_exact_solves) {
+    if (exact_step && repeats >= 1 && (pattern != solved_pattern || since_exact >= 3) && s.exact_solves < max_exact_solves) {
       if (active_set_.solve(pb, pattern, s.y, s.u)) s.Rbar = s.y - E.cwiseProduct(s.u);
       since_exact = 0;
       solved_pattern = pattern;
