@@ -17,6 +17,7 @@
 #include "rccm/errors.hpp"
 #include "rccm/simulation.hpp"
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>

@@ -48,7 +48,7 @@ class ActiveSetSystem {
   /// Node i's two rows of the pattern's matrix, written into `out`.
   using RowPair = Eigen::Ref<Eigen::MatrixXd, 0, Eigen::OuterStride<>>;
   void rows(const ContactProblem& pb, Rows kind, int i, RowPair out) const;
-  /// Whether node i's rows moved since they were factorized by more than GMRES absorbs cheaply.
+  /// Whether node i's rows moved since they were factorized by more than refinement absorbs cheaply.
   bool rows_moved(const ContactProblem& pb, Rows kind, int i) const;
   /// Sets up the pending correction for the changed nodes, or folds it into A0 and its
   /// inverse when it is large; false when a new factorization is due.
@@ -62,7 +62,7 @@ class ActiveSetSystem {
   /// the LU and pays no inverse.
   const Eigen::MatrixXd& inverse();
 
-  static constexpr double drift = 1e-3;  // relative row change left to GMRES
+  static constexpr double drift = 1e-3;  // relative row change left to refinement (GMRES if it stalls)
   std::vector<Rows> factorized_;         // the pattern of A0_ (empty: none)
   Eigen::VectorXd E0_, mubar0_;          // the E = D1 - D(beta) and mubar of A0_'s rows
   Eigen::MatrixXd A0_, A0_inverse_;
