@@ -14,8 +14,9 @@
 // Simulation(cfg).run(), and the RunResult it returns. `rccm sweep` does the same for any
 // setting, in parallel, with files.
 
-#include "rccm/errors.hpp"
-#include "rccm/simulation.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/app/simulation.hpp"
+#include "rccm/io/config_reader.hpp"
 
 #include <cmath>
 #include <cstdio>

@@ -1,7 +1,10 @@
 // Small helpers shared by the tests.
 #pragma once
 
-#include "rccm/config.hpp"
+#include "rccm/base/config.hpp"
+#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/io/config_reader.hpp"
+#include "rccm/model/model.hpp"
 
 #include <cstdio>
 #include <fstream>
@@ -9,6 +12,9 @@
 #include <unistd.h>
 
 namespace rccm::test {
+
+/// A config shipped in config/.
+inline std::string shipped(const std::string& name) { return std::string(RCCM_SOURCE_DIR) + "/config/" + name; }
 
 /// Writes `text` to a temporary .cfg file and returns its path.
 inline std::string write_temp_config(const std::string& text) {
@@ -25,5 +31,8 @@ inline Config config_from_text(const std::string& text, const std::vector<std::s
   std::remove(path.c_str());
   return c;
 }
+
+/// The model of a config on its built-in rectangle mesh, as `rccm run` builds it.
+inline Model make_model(const Config& cfg) { return Model(cfg, make_rectangle(cfg.mesh)); }
 
 }  // namespace rccm::test

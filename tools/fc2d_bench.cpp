@@ -6,8 +6,10 @@
 // solution, time per solve, and Siconos' time over ours at the same error: Siconos is asked
 // for the error our Gauss-Seidel solve reached, or 1e-10 (our tolerance) where ours went
 // below that (Siconos cannot always reach round-off; README "Performance").
-#include "rccm/bipotential_solver.hpp"
-#include "rccm/errors.hpp"
+#include "rccm/contact/bipotential_solver.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/io/config_reader.hpp"
 #include "siconos_peer.hpp"
 
 #include <chrono>
@@ -48,7 +50,7 @@ void compare(const std::string& name, const PlainContactProblem& p, const Contac
     params.max_iterations = 100000;
     params.form = form;
     ContactSolution s;
-    const double seconds = seconds_per_call([&] { s = BipotentialSolver(params).solve(pb); });
+    const double seconds = seconds_per_call([&] { s = BipotentialSolver(params).solve(pb, {}, {}); });
     const double e = peer::error(p, s.Rbar);
     if (form == SweepForm::GaussSeidel) ours_error = e, ours_seconds = seconds;
     row(name, pb.size(), form == SweepForm::GaussSeidel ? "bipotential-GS" : "bipotential-J", s.iterations, e,
@@ -86,7 +88,7 @@ int main(int argc, char** argv) {
         const std::string dir = argv[++a];
         for (const char* file : {"b1", "b2"}) {
           const Config cfg = load_config(dir + "/" + file + ".cfg", {"integrator.method=euler"});
-          const Model model(cfg);
+          const Model model(cfg, make_rectangle(cfg.mesh));
           for (const peer::StepProblem& sp : peer::step_problems(model, cfg, 40))
             compare(std::string(file) + " step " + std::to_string(sp.step), sp.plain, sp.problem);
         }

@@ -1,7 +1,7 @@
 #include "siconos_peer.hpp"
 
-#include "rccm/errors.hpp"
-#include "rccm/simulation.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/app/simulation.hpp"
 
 #include <chrono>
 #include <cstdio>
@@ -44,7 +44,7 @@ Eigen::MatrixXd swap_pairs(const Eigen::MatrixXd& W) {
 FrictionContactProblem* to_siconos(const PlainContactProblem& p) {
   const int n = static_cast<int>(p.q.size()), nc = n / 2;
   NumericsMatrix* M = NM_create(NM_DENSE, n, n);
-  const Eigen::MatrixXd W = swap_pairs(p.W);
+  const Eigen::MatrixXd W = swap_pairs(*p.W.dense());
   std::memcpy(M->matrix0, W.data(), sizeof(double) * n * n);
   auto* q = static_cast<double*>(std::malloc(sizeof(double) * n));
   auto* mu = static_cast<double*>(std::malloc(sizeof(double) * nc));
@@ -75,7 +75,7 @@ PlainContactProblem read_dat(const std::string& path) {
   Eigen::MatrixXd W(n, n);
   for (int j = 0; j < n; ++j)
     for (int i = 0; i < n; ++i) W(i, j) = NM_get_value(fc->M, i, j);
-  p.W = swap_pairs(W);
+  p.W = DenseDelassus(swap_pairs(W));
   p.q = swap_pairs(Eigen::Map<const Eigen::VectorXd>(fc->q, n).eval());
   p.mu = Eigen::Map<const Eigen::VectorXd>(fc->mu, fc->numberOfContacts);
   frictionContactProblem_free(fc);
@@ -104,7 +104,7 @@ PeerSolution solve(const PlainContactProblem& p, const std::string& solver, doub
 double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
   FrictionContactProblem* fc = to_siconos(p);
   Eigen::VectorXd z = swap_pairs(R);
-  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(p.W * R + p.q));
+  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(*p.W.dense() * R + p.q));
   double e = 0;
   fc2d_compute_error(fc, z.data(), w.data(), 1e-300, std::max(p.q.norm(), 1e-300), &e);
   frictionContactProblem_free(fc);
@@ -113,15 +113,15 @@ double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
 
 std::vector<StepProblem> step_problems(const Model& model, const Config& cfg, int every) {
   std::vector<StepProblem> out;
-  Eigen::VectorXd ut_previous = Eigen::VectorXd::Zero(model.contact_nodes());
+  Eigen::VectorXd u_previous = Eigen::VectorXd::Zero(model.interface().layout.offset(model.contact_nodes()));
   RunOptions options;
   options.observer = [&](const AcceptedStep& a) {
     if (a.step > 0 && a.step % every == 0) {
       // The problem this step solved at commit: (t, beta), slip from the previous accepted state.
-      const ContactProblem pb = model.contact_problem(a.t, a.state.beta, ut_previous);
+      const ContactProblem pb = model.contact_problem(a.t, a.state.beta, u_previous);
       out.push_back({a.step, a.t, pb, plain_form(pb)});
     }
-    ut_previous = a.state.ut();
+    u_previous = a.state.u;
   };
   Simulation(cfg, options).run();
   return out;

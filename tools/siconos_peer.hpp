@@ -3,9 +3,10 @@
 // contact (normal, tangent); ours is (tangent, normal): the swap happens here only.
 #pragma once
 
-#include "rccm/config.hpp"
-#include "rccm/contact_problem.hpp"
-#include "rccm/model.hpp"
+#include "rccm/base/config.hpp"
+#include "rccm/contact/contact_problem.hpp"
+#include "rccm/contact/delassus.hpp"
+#include "rccm/model/model.hpp"
 
 #include <string>
 #include <vector>

@@ -4,9 +4,10 @@
 // a sanitizer report, a hang or another exception is a bug.
 #pragma once
 
-#include "rccm/config.hpp"
-#include "rccm/errors.hpp"
-#include "rccm/model.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/io/config_reader.hpp"
+#include "rccm/model/model.hpp"
 
 #include <algorithm>
 #include <string>
@@ -20,7 +21,7 @@ inline bool build_untrusted_config(const std::string& text) {
     // Large meshes and interfaces are valid input but only slow the search down (a
     // 1000-node interface is a dense 2000 x 2000 flexibility).
     if (static_cast<double>(cfg.mesh.nx) * cfg.mesh.ny > 2000 || std::max(cfg.mesh.nx, cfg.mesh.ny) > 200) return false;
-    const Model model(cfg);
+    const Model model(cfg, make_rectangle(cfg.mesh));
     return true;
   } catch (const InputError&) {
     return false;

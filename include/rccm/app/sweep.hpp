@@ -1,0 +1,46 @@
+// `rccm sweep`: one config run for every combination of listed setting values (an alpha
+// study: --set interface.alpha=0,0.01,0.1,1,10,100), in parallel, each case in its own
+// subdirectory, with a summary table and a plain job list for a cluster.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/app/simulation.hpp"
+
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+/// One swept setting: "interface.alpha" and its values as written ("0.01", "1", ...).
+struct SweepAxis {
+  std::string path;
+  std::vector<std::string> values;
+};
+
+struct SweepCase {
+  std::string name;                    // subdirectory, e.g. "alpha=0.01" or "alpha=1_mu=0.3"
+  std::vector<std::string> overrides;  // path=value of this case
+  Config config;
+  RunResult result;
+  std::string error;                   // a case that failed: its message
+};
+
+/// Splits --set items into sweep axes (a value with commas outside brackets) and plain
+/// overrides (everything else).
+void split_sweep_settings(const std::vector<std::string>& items, std::vector<SweepAxis>& axes,
+                          std::vector<std::string>& fixed);
+
+/// Builds the cases (the grid of all axes); interface.alpha = 0 is run by the
+/// rate-independent integrator. Throws InputError for a bad case config (before any run).
+std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const std::vector<std::string>& fixed,
+                                        const std::vector<SweepAxis>& axes, const std::string& directory);
+
+/// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier results).
+void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
+
+/// summary.csv and jobs.txt in `directory`, and the table on `out`.
+void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepCase>& cases,
+                         const std::string& rccm_path, const std::string& config_file);
+
+}  // namespace rccm

@@ -1,0 +1,145 @@
+// The run configuration as plain structs, one per section of the config file
+// (io/config_reader reads them from libconfig, with every range check, in one place).
+//
+// Units (docs/MODEL.md): mm, N, MPa (= N/mm^2), s. Plane problems are per unit thickness
+// (1 mm), so a nodal force is in N and an interface stiffness C in MPa/mm.
+// The schema is documented in README.md ("Configuration reference").
+#pragma once
+
+#include "rccm/base/time_function.hpp"
+
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+/// A named set of mesh nodes selected by a box [xmin, xmax, ymin, ymax] (mm).
+struct NodeSetDef {
+  std::string name;
+  std::array<double, 4> box{};
+};
+
+enum class ElementType { T3, Q4 };
+enum class Hypothesis { PlaneStrain, PlaneStress };
+
+/// The built-in mesh source: a structured rectangle.
+struct MeshParams {
+  std::array<double, 2> origin{0.0, 0.0};  // mm
+  std::array<double, 2> size{};            // mm
+  int nx = 0, ny = 0;                      // cells along x and y
+  ElementType element = ElementType::T3;
+  double rotation = 0.0;                   // degrees, counter-clockwise about `origin`
+  std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners
+};
+
+struct MaterialParams {
+  double E = 0.0;   // Young's modulus, MPa
+  double nu = 0.0;  // Poisson's ratio, in (-1, 0.5)
+  Hypothesis hypothesis = Hypothesis::PlaneStrain;
+};
+
+/// An interface obeying the RCCM law (docs/MODEL.md s2-3): a node set facing a rigid flat
+/// foundation.
+struct InterfaceParams {
+  std::string path = "interface";          // its section in the config, for messages
+  std::string boundary;                    // node set of the contact nodes
+  std::array<double, 2> normal{0.0, 1.0};  // foundation normal, into the body (unit)
+  double Cn = 0.0, Ct = 0.0;               // initial stiffnesses, MPa/mm
+  double w = 0.0;                          // adhesion energy threshold, mJ/mm^2 = N/mm
+  double alpha = 1.0;                      // viscosity, N s/mm
+  double mu = 0.0;                         // Coulomb coefficient
+  std::vector<double> beta0{1.0};          // one value, or one per contact node
+  std::vector<double> g0{0.0};             // initial gap, mm: one value, or one per contact node
+};
+
+enum class LoadKind { Displacement, Force, Traction };
+
+/// A load on one component of a node set, scaled in time by `amplitude`.
+/// Displacement: mm per node; Force: N per node; Traction: MPa along the set's edges.
+struct LoadParams {
+  std::string path;  // "loads.[k]", for messages
+  std::string node_set;
+  LoadKind kind = LoadKind::Displacement;
+  int component = 0;  // 0 = x, 1 = y
+  TimeFunction amplitude;
+};
+
+struct TimeParams {
+  double T = 0.0;   // final time, s
+  int steps = 210;  // steps of the fixed-step integrators (the paper's 210 increments)
+};
+
+enum class SweepForm { GaussSeidel, Jacobi };
+enum class RhoRule { Eigen, Paper };
+
+/// Numerics of the bipotential contact solve (docs/MODEL.md s5).
+struct SolverParams {
+  double tolerance = 1e-10;      // relative change of Rbar and scaled natural-map residual
+  int max_iterations = 2000;     // sweeps per contact solve
+  int local_iterations = 100;    // predictor-corrector steps per node and sweep (Gauss-Seidel)
+  SweepForm form = SweepForm::GaussSeidel;
+  RhoRule rho = RhoRule::Eigen;  // eigen: 1/lambda_max of the node block; paper: eq. 34
+  double relaxation = 1.0;       // Jacobi under-relaxation of the update, in (0, 1]
+  bool active_set = true;        // the exact step: solve the linear problem of a status pattern
+  int active_set_max_nodes = 4096;  // beyond: sweeps only (the exact step keeps two dense (2n)^2 matrices: 32 n^2 bytes)
+};
+
+/// How beta evolves: integrated by ARKODE or explicit Euler, the rate-independent limit,
+/// or held at beta0 (contact steps only).
+enum class Method { Arkode, Euler, RateIndependent, ContactOnly };
+enum class ArkodeScheme { Dirk, Erk };
+
+/// Time integration of beta (docs/MODEL.md s6).
+struct IntegratorParams {
+  Method method = Method::Arkode;
+  ArkodeScheme scheme = ArkodeScheme::Dirk;  // arkode: implicit DIRK (robust as alpha -> 0) or ERK
+  std::string table;                          // arkode Butcher table name; empty: the scheme's default
+  double rtol = 1e-6, atol = 1e-10;           // arkode tolerances (beta is dimensionless)
+  double max_step = 0.0;                      // s; 0: T / 50
+  double initial_step = 0.0;                  // s; 0: ARKODE's estimate
+  double fixed_step = 0.0;                    // s; > 0: no error control (order studies); 0: adaptive
+  double min_step = 0.0;                      // s; 0: 1e-9 T (a smaller step fails the run)
+  int max_steps = 200000;                     // accepted steps per output interval
+  double fixed_point_tolerance = 1e-10;       // rate-independent: change of beta
+  int fixed_point_iterations = 500;
+};
+
+struct WatchPoint {
+  std::string name;
+  std::array<double, 2> point{};  // mm, in the mesh source's frame; the nearest contact node is watched
+};
+
+struct OutputParams {
+  std::string directory = "results";
+  std::vector<double> times;      // s, in [0, T]
+  std::vector<WatchPoint> watch;
+  int checkpoint_steps = 100;     // a restart point every this many accepted steps; 0: only at a stop
+};
+
+struct Config {
+  std::string file;                  // path it was read from
+  std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
+  /// Fingerprint of every setting that shapes the results (all but output.directory and
+  /// output.checkpoint_steps): a checkpoint restarts only a run of the same settings.
+  std::string settings;
+
+  /// "file:line: path" for messages about a setting found wrong after reading (a list of
+  /// the wrong length once the mesh is known, an unwritable directory).
+  std::string where(const std::string& path) const;
+
+  MeshParams mesh;
+  MaterialParams material;
+  std::vector<InterfaceParams> interfaces;  // one today: the `interface` section
+  std::vector<LoadParams> loads;
+  TimeParams time;
+  SolverParams solver;
+  IntegratorParams integrator;
+  OutputParams output;
+};
+
+/// The config name of a method ("arkode", "euler", "rate-independent", "contact-only").
+const char* method_name(Method m);
+
+}  // namespace rccm

@@ -1,0 +1,40 @@
+// The bipotential contact solver of De Saxce and Feng at fixed beta (docs/MODEL.md s5):
+// pair-wise Uzawa predictor-corrector,
+//   tau = Rbar - rho_i s_i(u),   Rbar = proj(tau, K_mubar)      (paper eqs. 35-38)
+// on the condensed problem of ContactProblem, swept pair by pair (Gauss-Seidel) or all at
+// once (the paper's Jacobi form). The adhesive spring stays inside the pair-wise solve
+// (a dim x dim matter), so a change of beta costs nothing global. From a warm start, exact
+// active-set steps come first (active_set.hpp).
+//
+// The pairs' local algebra runs on fixed-size vectors of the dimension (2 or 3), chosen
+// once per solve: run-time sized local vectors cost a third more time on B1.
+#pragma once
+
+#include "rccm/contact/active_set.hpp"
+#include "rccm/contact/contact_solver.hpp"
+
+namespace rccm {
+
+class BipotentialSolver final : public ContactSolver {
+ public:
+  explicit BipotentialSolver(const SolverParams& params) : params_(params) {}
+
+  ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                        const Eigen::VectorXd& u_start) override;
+  std::string failure_advice() const override;
+
+ private:
+  template <int dim>
+  class Iteration;
+  template <int dim>
+  ContactSolution solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start, const Eigen::VectorXd& u_start);
+  SolverParams params_;
+  // The exact step's factorization, reused while the status pattern repeats from one solve
+  // to the next (a cache: results do not depend on it beyond the tolerance).
+  ActiveSetSystem<2> active_set_2d_;
+  ActiveSetSystem<3> active_set_3d_;
+  template <int dim>
+  ActiveSetSystem<dim>& active_set();
+};
+
+}  // namespace rccm

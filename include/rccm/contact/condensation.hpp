@@ -1,0 +1,40 @@
+// Elimination of the bulk onto the interface (docs/MODEL.md s4):
+//   u_c = W0 y + q0(t),  W0 = P K0^-1 P^T,  q0(t) = sum_k amplitude_k(t) P U_k,
+// where U_k is the displacement under load case k with the interface forces zero and the
+// springs at beta = 1 (in K0). Built once per run: one CHOLMOD factorization with the interface
+// DOFs last (W0 from its trailing block), one solve per load case.
+#pragma once
+
+#include "rccm/contact/delassus.hpp"
+#include "rccm/fem/elastic_problem.hpp"
+#include "rccm/fem/loads.hpp"
+#include "rccm/interface/interface.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace rccm {
+
+class Condensation {
+ public:
+  Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads);
+
+  const DelassusOperator& W0() const { return W0_; }
+
+  /// Free response at time t, mm.
+  Eigen::VectorXd q0(double t) const;
+
+  /// Full nodal displacement at time t under the interface force y = Rbar + E u_c.
+  Eigen::VectorXd displacement(double t, const Eigen::VectorXd& y) const;
+
+ private:
+  const ElasticProblem& body_;
+  const Interface& interface_;
+  std::vector<TimeFunction> amplitudes_;
+  Eigen::MatrixXd U_;  // full displacement of each unit load case (columns)
+  Eigen::MatrixXd Q_;  // P U_k (columns)
+  DenseDelassus W0_;
+};
+
+}  // namespace rccm

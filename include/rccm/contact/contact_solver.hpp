@@ -1,0 +1,30 @@
+// A solver of the condensed contact problem at fixed beta (contact_problem.hpp). Every
+// integrator stage performs one solve, warm-started from a nearby solution.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/contact/contact_problem.hpp"
+
+#include <memory>
+#include <string>
+
+namespace rccm {
+
+class ContactSolver {
+ public:
+  virtual ~ContactSolver() = default;
+
+  /// Solves `pb` starting from a nearby solution's (Rbar, u) (empty vectors: from zero).
+  /// Never throws for non-convergence: check `converged` (and `worst_node`). Throws SolveError
+  /// when a pair has no stiffness left (an unrestrained structure).
+  virtual ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                const Eigen::VectorXd& u_start) = 0;
+
+  /// For the message of a solve that did not converge: what to change.
+  virtual std::string failure_advice() const = 0;
+};
+
+/// The contact solver the config asks for (solver section).
+std::unique_ptr<ContactSolver> make_contact_solver(const SolverParams& params);
+
+}  // namespace rccm

@@ -1,0 +1,51 @@
+// The flexibility (Delassus) operator W0 of the condensed interface problem
+// (docs/MODEL.md s4): u = W0 y + q0, with W0 = P K0^-1 P^T. The contact solvers see it only
+// through this interface, so that a sparse or matrix-free operator can replace the dense one.
+#pragma once
+
+#include "rccm/interface/layout.hpp"
+
+#include <Eigen/Core>
+
+namespace rccm {
+
+class DelassusOperator {
+ public:
+  virtual ~DelassusOperator() = default;
+
+  /// Rows and columns: the stacked local components of the contact pairs.
+  virtual Eigen::Index size() const = 0;
+
+  /// u = W0 y (u may be a column of a matrix).
+  virtual void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const = 0;
+
+  /// u += W0 (:, first .. first + dy.size() - 1) dy: the response to a change of one pair's force.
+  virtual void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const = 0;
+
+  /// The diagonal block W0 (first.., first..) of one pair, of size n.
+  virtual LocalMatrix block(Eigen::Index first, int n) const = 0;
+
+  /// The largest magnitude on the diagonal (a scale for "no flexibility").
+  virtual double diagonal_scale() const = 0;
+
+  /// The matrix itself when it is stored dense (the exact active-set step and the plain form
+  /// need it); nullptr otherwise.
+  virtual const Eigen::MatrixXd* dense() const { return nullptr; }
+};
+
+/// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few thousand pairs.
+class DenseDelassus final : public DelassusOperator {
+ public:
+  explicit DenseDelassus(Eigen::MatrixXd W) : W_(std::move(W)) {}
+  Eigen::Index size() const override { return W_.rows(); }
+  void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
+  void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
+  LocalMatrix block(Eigen::Index first, int n) const override { return W_.block(first, first, n, n); }
+  double diagonal_scale() const override { return W_.diagonal().cwiseAbs().maxCoeff(); }
+  const Eigen::MatrixXd* dense() const override { return &W_; }
+
+ private:
+  Eigen::MatrixXd W_;
+};
+
+}  // namespace rccm

@@ -1,0 +1,50 @@
+// The tuning constants of the contact solvers, named and in one place. None changes a
+// converged solution beyond the tolerance; each trades work against robustness, and the
+// values are those measured best on B1, B2 and the Siconos problems (docs/PERFORMANCE.md).
+#pragma once
+
+namespace rccm::tuning {
+
+// --- Bipotential solver (bipotential_solver.cpp) ---
+/// Status patterns the exact-first phase tries from a warm start before any sweep.
+constexpr int exact_first_patterns = 4;
+/// Exact steps allowed during the sweeps of one solve, and the sweeps between two exact
+/// steps of the same pattern.
+constexpr int max_exact_steps = 10;
+constexpr int exact_step_interval = 3;
+/// Sweeps between two fresh products u = W0 y + q0: Gauss-Seidel's incremental updates of u
+/// accumulate round-off; a product reads all of W0, as much as a sweep.
+constexpr int refresh_interval = 8;
+/// Rbar = y - E u cancels where beta -> 0: its attainable accuracy is this many eps |y|.
+constexpr double cancellation_floor = 1e3;
+/// A pair's local predictor-corrector stops when its change falls below this fraction of
+/// the solver tolerance (times the force level).
+constexpr double local_tolerance_fraction = 0.1;
+/// A pair's force level in its residual is at least this fraction of the largest force.
+constexpr double residual_level_floor = 1e-8;
+/// |det(I - W0_ii E_i)| below this: the pair has no stiffness left (an unrestrained body).
+constexpr double singular_pair = 1e-12;
+/// lambda_max of a pair's flexibility below this fraction of W0's diagonal: every component
+/// of the pair is prescribed, its Rbar does not move it.
+constexpr double prescribed_pair = 1e-14;
+
+// --- Exact active-set step (active_set.cpp) ---
+/// Relative change of a row's spring (E) or of mubar left to refinement instead of a
+/// low-rank correction.
+constexpr double row_drift = 1e-3;
+/// Changed rows kept as a pending Woodbury correction up to 1/fold_fraction of the rows;
+/// folded into the inverse beyond; over half the rows: a new factorization.
+constexpr int fold_fraction = 8;
+/// Refinement steps with the corrected inverse, and the residual gain a step must make.
+constexpr int refinement_steps = 6;
+constexpr double refinement_gain = 0.1;
+/// A correction smaller than this relative to y leaves y unmoved (converged); a residual
+/// below this fraction of the first one is converged.
+constexpr double unmoved = 1e-12;
+constexpr double converged_residual = 1e-13;
+/// GMRES rescue of a stalled refinement: iterations, passes, relative tolerance.
+constexpr int gmres_iterations = 30;
+constexpr int gmres_passes = 3;
+constexpr double gmres_tolerance = 1e-6;
+
+}  // namespace rccm::tuning

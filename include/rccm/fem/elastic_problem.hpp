@@ -1,0 +1,51 @@
+// The linear elastic body with its Dirichlet DOFs eliminated and the initial interface
+// springs added (docs/MODEL.md s4: K0 = K + sum_i P_i^T a_i diag(Ct, Cn) P_i), factorized once,
+// with the interface DOFs ordered last so that the flexibility P K0^-1 P^T comes from the
+// factor's trailing block (CholmodFactor).
+#pragma once
+
+#include "rccm/la/cholmod_factor.hpp"
+#include "rccm/la/sparse.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace rccm {
+
+class ElasticProblem {
+ public:
+  /// `springs`: full-size sparse matrix added to K before elimination (the interface
+  /// springs at beta = 1); `prescribed`: the Dirichlet DOFs (Mesh::dof numbering);
+  /// `interface_dofs`: the DOFs `flexibility()` will be asked about, ordered last.
+  /// Throws InputError when the body is not restrained (K0 singular).
+  ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
+                 const std::vector<int>& interface_dofs = {});
+
+  int num_dofs() const { return static_cast<int>(free_index_.size()); }
+  const std::vector<int>& free_dofs() const { return free_; }
+  const std::vector<int>& prescribed_dofs() const { return prescribed_; }
+  double rcond() const { return factor_->rcond(); }
+
+  /// Full displacement for nodal forces f and prescribed values (full-size vectors;
+  /// only the prescribed entries of `u_prescribed` are read): solves K0_FF u_F = f_F - K0_FD u_D.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& u_prescribed) const;
+
+  /// P K0^-1 P^T (prescribed displacements zero) for a P that reads only interface DOFs:
+  /// with S = L_CC L_CC^T the Schur complement of the interface DOFs, (K0^-1)_CC = S^-1 and
+  /// P K0^-1 P^T = G^T G with G = L_CC^-1 P_C^T: one dense triangular solve (docs/MODEL.md s4).
+  Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
+
+  /// Restriction of full-size columns to the free DOFs, and its transpose.
+  Eigen::MatrixXd restrict_free(const Eigen::MatrixXd& full) const;
+  Eigen::MatrixXd extend_free(const Eigen::MatrixXd& free) const;
+
+ private:
+  std::vector<int> free_, prescribed_;
+  std::vector<int> free_index_;  // global DOF -> index among free DOFs, or -1
+  SparseMatrix K0_FD_;
+  std::unique_ptr<CholmodFactor> factor_;
+};
+
+}  // namespace rccm

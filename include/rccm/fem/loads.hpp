@@ -1,0 +1,29 @@
+// The loads of a run as unit load cases scaled by amplitudes in time (docs/MODEL.md s1).
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/fem/mesh.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace rccm {
+
+/// One load: full-size unit nodal forces and unit prescribed values, times amplitude(t).
+struct LoadCase {
+  TimeFunction amplitude;
+  Eigen::VectorXd force;         // N at amplitude 1
+  Eigen::VectorXd displacement;  // mm at amplitude 1 (only prescribed DOFs nonzero)
+  std::vector<int> prescribed;   // DOFs this load prescribes
+  std::vector<int> dofs;         // DOFs it acts on (prescribed or loaded): its resultant's
+};
+
+/// Turns the config's loads into load cases; throws InputError "file:line: loads.[k]..."
+/// for an unknown or empty node set, or a DOF prescribed by two loads.
+std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg);
+
+/// All prescribed DOFs of the load cases.
+std::vector<int> prescribed_dofs(const std::vector<LoadCase>& loads);
+
+}  // namespace rccm

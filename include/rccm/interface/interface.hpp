@@ -1,0 +1,53 @@
+// The interface Gamma_c as a list of contact pairs (docs/MODEL.md s2): a node of a body
+// facing a rigid foundation (or, later, a node of another body), with its local frame,
+// initial gap, tributary measure and RCCM law; and the operator P from the global
+// displacement to the pairs' local relative displacements.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/fem/mesh.hpp"
+#include "rccm/interface/foundation.hpp"
+#include "rccm/interface/layout.hpp"
+#include "rccm/interface/rccm_law.hpp"
+#include "rccm/la/sparse.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace rccm {
+
+struct ContactPair {
+  int node = -1;       // mesh node of the body the normal points into
+  int opposite = -1;   // mesh node it faces on another body, or -1: a rigid foundation
+  double measure = 0;  // tributary measure a_i (2D: length), mm
+  double g0 = 0;       // initial gap, mm
+  double beta0 = 1;    // initial adhesion intensity
+  Frame frame;
+  int law = 0;         // index in Interface::laws: the config interface it belongs to
+};
+
+struct Interface {
+  Layout layout;
+  std::vector<ContactPair> pairs;
+  std::vector<RccmLaw> laws;  // one per config interface
+  SparseMatrix P;             // rows layout.offset(i) + k: axis k of pair i applied to u_node - u_opposite
+
+  int size() const { return static_cast<int>(pairs.size()); }
+  const RccmLaw& law(int i) const { return laws[pairs[i].law]; }
+
+  /// The adhesive springs at beta = 1 per local component, D1 = a_i (Ct, .., Cn), N/mm (docs/MODEL.md s4).
+  Eigen::VectorXd spring_stiffness() const;
+
+  /// P^T diag(a_i Ct weight_t,i, .., a_i Cn weight_n,i) P: the springs as a global matrix with
+  /// per-pair weights (beta^2: the adhesive springs at beta; ones: K0's springs).
+  SparseMatrix springs(const Eigen::VectorXd& weight_t, const Eigen::VectorXd& weight_n) const;
+  SparseMatrix initial_springs() const;
+};
+
+/// The contact pairs of every interface of the config on `mesh`; throws InputError
+/// "file:line: interface.boundary: ..." when a node set is unknown, empty or not a chain of
+/// boundary edges, or a per-node list has the wrong length.
+Interface make_interface(const Mesh& mesh, const Config& cfg);
+
+}  // namespace rccm

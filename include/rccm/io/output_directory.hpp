@@ -1,0 +1,31 @@
+// Where a run writes its results (output.directory): checked before the model is built,
+// without creating anything, then claimed for the run's life.
+#pragma once
+
+#include "rccm/base/config.hpp"
+
+#include <string>
+
+namespace rccm {
+
+/// Throws InputError "file:line: output.directory: ..." when the directory cannot be created
+/// or written, or already holds the results of a run and `force` is false. Creates nothing.
+void check_output_directory(const Config& cfg, bool force);
+
+/// Creates output.directory and holds an exclusive lock on DIR/.lock while alive: a second
+/// run into the same directory is refused while this one runs (even with --force).
+class OutputDirectory {
+ public:
+  explicit OutputDirectory(const Config& cfg);
+  ~OutputDirectory();
+  OutputDirectory(const OutputDirectory&) = delete;
+  OutputDirectory& operator=(const OutputDirectory&) = delete;
+
+  const std::string& path() const { return path_; }
+
+ private:
+  std::string path_;
+  int lock_fd_ = -1;
+};
+
+}  // namespace rccm

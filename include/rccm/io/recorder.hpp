@@ -1,0 +1,85 @@
+// Everything a run records besides the physics (README "Result files"): the result files,
+// checkpoints and a restart from one, the energy balance and peak forces, the per-step
+// records, the step log and the progress line, and the report at the end. Simulation::run()
+// hands it each stage's outcome; it owns no physics.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/io/checkpoint.hpp"
+#include "rccm/io/output_directory.hpp"
+#include "rccm/io/result_writer.hpp"
+#include "rccm/io/run_record.hpp"
+#include "rccm/model/body_state.hpp"
+#include "rccm/model/model.hpp"
+#include "rccm/time/beta_ode.hpp"
+#include "rccm/time/energy_balance.hpp"
+#include "rccm/time/integrator.hpp"
+
+#include <chrono>
+#include <functional>
+#include <iosfwd>
+#include <memory>
+#include <string>
+
+namespace rccm {
+
+struct RunOptions {
+  std::ostream* step_log = nullptr;  // one line per accepted step
+  bool progress = false;             // one updating line on stderr
+  bool write_files = false;          // results in output.directory
+  bool force = false;                // overwrite the results of an earlier run there
+  bool restart = false;              // go on from output.directory/checkpoint.txt (Checkpoint)
+  BetaOde::Observer observer;        // called after each accepted step (tests)
+};
+
+class Recorder {
+ public:
+  /// Checks the output directory, or reads the checkpoint to restart from, before anything
+  /// is built or written (throws InputError).
+  Recorder(const Config& cfg, RunOptions options);
+
+  /// The model is built: its size for the report, and the result files (a restart takes up
+  /// the files of the run it continues, up to its checkpoint).
+  void open(const Model& model);
+
+  /// The state the run starts from, committed on `ode`: t = 0 (accepted, so recorded as
+  /// step 0), or the checkpoint's.
+  void start(BetaOde& ode);
+
+  /// Records an accepted step: energy, peak forces, step record, files, logs, checkpoints.
+  void step(const AcceptedStep& a);
+
+  /// The integrator's first step (a restart begins with the step it stopped at; 0: its own).
+  double initial_step() const;
+  /// The integrator is made: a restart restores what it had observed.
+  void attach(BetaIntegrator& integrator);
+
+  /// Whether the snapshot at t_out has been taken (before a restart's checkpoint).
+  bool has_snapshot(double t_out) const;
+  /// The interface and the mesh at the committed state: an output time.
+  void snapshot();
+
+  /// The end of the run, complete or `stopped` (why): a checkpoint of the last accepted
+  /// state, its snapshot if it stopped between output times, totals and the report.
+  RunResult finish(const std::string& stopped = "");
+
+ private:
+  void save_checkpoint();
+  double seconds() const;
+
+  const Config& cfg_;
+  RunOptions options_;
+  std::chrono::steady_clock::time_point start_;
+  std::unique_ptr<Checkpoint> resume_;
+  const Model* model_ = nullptr;
+  BetaOde* ode_ = nullptr;
+  BetaIntegrator* integrator_ = nullptr;
+  std::unique_ptr<OutputDirectory> directory_;
+  std::unique_ptr<ResultWriter> writer_;
+  std::unique_ptr<EnergyBalance> energy_;
+  BodyState body_;            // of the last accepted step
+  IntegratorStats earlier_;   // counts of the run a restart continues
+  RunResult result_;
+};
+
+}  // namespace rccm

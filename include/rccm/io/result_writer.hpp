@@ -1,0 +1,49 @@
+// The result files of a run, in output.directory (README "Result files"):
+//   interface_t<time>.csv  interface fields at each output time
+//   history.csv            watched points and solver work at every accepted step
+//   curves.csv             each load's value and resultant force, and the energy terms
+//   mesh_<k>.vtu, results.pvd   ParaView
+// The CSV streams grow by one complete line per accepted step (one write each); the other
+// files are written whole under a temporary name and renamed (AtomicFile).
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/io/vtk_writer.hpp"
+#include "rccm/model/body_state.hpp"
+#include "rccm/model/model.hpp"
+#include "rccm/time/beta_ode.hpp"
+#include "rccm/time/energy_balance.hpp"
+
+#include <fstream>
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+/// Where a restarted run takes up its files: the checkpoint's time and output times.
+struct ResumePoint {
+  double t = 0;
+  std::vector<double> output_times;  // of the snapshots taken up to t
+};
+
+class ResultWriter {
+ public:
+  /// Writes the CSV headers into `directory` (created and locked by the caller). With
+  /// `resume`: keeps the lines and files of an earlier run up to resume->t and removes the
+  /// rest (what an interrupted run wrote after its checkpoint), then appends.
+  ResultWriter(const Model& model, const Config& cfg, const std::string& directory,
+               const ResumePoint* resume = nullptr);
+
+  void step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e);
+  void output(const InterfaceState& s, const BodyState& b);
+  const std::string& directory() const { return directory_; }
+
+ private:
+  const Model& model_;
+  const Config& cfg_;
+  std::string directory_;
+  std::ofstream history_, curves_;
+  VtkWriter vtk_;
+};
+
+}  // namespace rccm

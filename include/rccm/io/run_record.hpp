@@ -1,0 +1,48 @@
+// What a run leaves behind in memory: snapshots of the interface at the output times, the
+// work of every accepted step, totals, the energy balance and peak forces.
+#pragma once
+
+#include "rccm/time/beta_ode.hpp"
+#include "rccm/time/energy_balance.hpp"
+#include "rccm/time/integrator.hpp"
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+/// The interface at an output time.
+struct Snapshot {
+  double t = 0;
+  Eigen::VectorXd beta, Rbar, u;
+  double debonded_length = 0;  // sum of the tributary lengths where beta < 0.5, mm
+};
+
+/// Work of one accepted step, for the report's per-step table (the paper's Tables 1-2).
+struct StepRecord {
+  int step = 0;
+  double t = 0, dt = 0;
+  long contact_solves = 0;
+  double sweeps_mean = 0;
+  int sweeps_max = 0;
+  double cpu_seconds = 0;
+};
+
+struct RunResult {
+  std::vector<Snapshot> snapshots;  // at the output times and at T
+  std::vector<int> watched;         // contact pair of each output.watch point
+  std::vector<StepRecord> steps;    // every accepted step (step 0: the initial state)
+  IntegratorStats integrator;
+  SolveCounts solves;
+  EnergyTerms energy;               // at T (docs/MODEL.md s3)
+  std::vector<double> peak_force;   // per load: largest |resultant force| over the run, N
+  std::vector<double> peak_time;    // per load: when it occurred, s
+  std::vector<std::string> warnings;
+  std::string stopped;              // why the run ended before T (failure, signal); empty: complete
+  int nodes = 0, cells = 0, contact_nodes = 0, dofs = 0;
+  double setup_seconds = 0, wall_seconds = 0;
+};
+
+}  // namespace rccm

@@ -1,0 +1,20 @@
+// The run report: the paper's Table 1 layout (work per step at steps 1, 10, 40, 60, 100,
+// 150, 200 or the nearest ones), integrator totals, energy balance and wall time; as text
+// (report.txt) and JSON (report.json) for scripts.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/io/run_record.hpp"
+
+#include <iosfwd>
+#include <string>
+
+namespace rccm {
+
+void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r);
+void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r);
+
+/// Writes report.txt and report.json into `directory`.
+void write_reports(const std::string& directory, const Config& cfg, const RunResult& r);
+
+}  // namespace rccm

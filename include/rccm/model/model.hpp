@@ -1,0 +1,67 @@
+// Everything a run builds once from its config and its mesh: loads, elastic body (K0
+// factorized once), interface and condensation. Data flows Config + Mesh -> LoadCases ->
+// ElasticProblem -> Interface -> Condensation (docs/ARCHITECTURE.md); the model then poses
+// the contact problem at any (t, beta).
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/contact/condensation.hpp"
+#include "rccm/contact/contact_problem.hpp"
+#include "rccm/fem/elastic_problem.hpp"
+#include "rccm/fem/loads.hpp"
+#include "rccm/fem/mesh.hpp"
+#include "rccm/interface/interface.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+namespace rccm {
+
+class Model {
+ public:
+  /// Builds and checks everything on `mesh` (from a mesh source); throws InputError naming
+  /// the config's file, line and setting, before anything is written.
+  Model(const Config& cfg, Mesh mesh);
+  Model(const Model&) = delete;
+  Model& operator=(const Model&) = delete;
+
+  const Mesh& mesh() const { return mesh_; }
+  const MaterialParams& material() const { return material_; }
+  const Interface& interface() const { return interface_; }
+  const Condensation& condensation() const { return *condensation_; }
+  int contact_nodes() const { return interface_.size(); }
+  /// The largest extent of the mesh, mm: no small-strain displacement comes near it.
+  double size() const { return size_; }
+
+  /// beta0 of every contact pair.
+  Eigen::VectorXd initial_beta() const;
+
+  /// Contact pair watched for each output.watch entry (nearest pair to its point).
+  const std::vector<int>& watched() const { return watched_; }
+
+  /// The condensed problem at time t and adhesion beta, slip measured from u_ref
+  /// (docs/MODEL.md s4). Its W0 points into this model.
+  ContactProblem contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& u_ref) const;
+
+  const SparseMatrix& stiffness() const { return K_; }  // bare K, all DOFs
+  const std::vector<LoadCase>& loads() const { return loads_; }
+
+ private:
+  /// Throws InputError when no contact state can hold the body (a frictionless, unbonded interface).
+  void check_restrained(const Config& cfg) const;
+
+  Mesh mesh_;
+  MaterialParams material_;
+  double size_ = 0;
+  Interface interface_;
+  std::vector<LoadCase> loads_;
+  SparseMatrix K_;
+  std::unique_ptr<ElasticProblem> body_;
+  std::unique_ptr<Condensation> condensation_;
+  Eigen::VectorXd D1_, g0_;
+  std::vector<int> watched_;
+};
+
+}  // namespace rccm

@@ -1,0 +1,29 @@
+// beta integrated by SUNDIALS ARKODE (ARKStep), adaptive (docs/MODEL.md s6). Every stage
+// evaluates f(t, beta) by a bipotential contact solve; after each accepted step the contact
+// state is recomputed and committed (ARKStepSetPostprocessStepFn). Implicit DIRK (default:
+// the ODE is stiff, its rate (Cn u_n^2 + Ct u_t^2)/alpha grows without bound as alpha -> 0)
+// with modified Newton on the diagonal Jacobian, solved by KLU; or explicit ERK.
+// A contact solve that fails inside a stage is a recoverable RHS failure: ARKODE cuts the step.
+#pragma once
+
+#include "rccm/time/integrator.hpp"
+
+#include <memory>
+
+namespace rccm {
+
+class ArkodeIntegrator final : public BetaIntegrator {
+ public:
+  /// `T`: the final time (the default largest step is T / 50, the smallest 1e-9 T).
+  ArkodeIntegrator(BetaSystem& ode, const IntegratorParams& params, double T);
+  ~ArkodeIntegrator() override;
+  void advance(double t_out) override;
+  IntegratorStats stats() const override;
+  double last_step() const override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rccm

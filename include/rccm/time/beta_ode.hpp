@@ -1,0 +1,105 @@
+// The beta ODE of the RCCM interface (docs/MODEL.md s6, paper eq. 31), one state per contact pair:
+//   d beta_i / dt = f_i(t, beta) = -(1/alpha) max(0, (Cn u_n,i^2 + Ct |u_t,i|^2) beta_i - w),
+// where u comes from one contact solve at (t, beta) that starts from the last ACCEPTED
+// state. After each accepted step the contact state is recomputed at the accepted (t, beta),
+// committed, and shown to the observer.
+#pragma once
+
+#include "rccm/contact/contact_solver.hpp"
+#include "rccm/model/interface_state.hpp"
+#include "rccm/model/model.hpp"
+#include "rccm/time/beta_system.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+/// Work counted over contact solves.
+struct SolveCounts {
+  long contact_solves = 0;
+  long sweeps = 0;
+  int max_sweeps = 0;
+  double seconds = 0;  // wall time inside the contact solves (problem set-up and solver)
+  void add(const ContactSolution& s, double solve_seconds);
+  double sweeps_per_solve() const { return double(sweeps) / double(std::max(1L, contact_solves)); }
+};
+
+/// What an observer sees after each accepted step.
+struct AcceptedStep {
+  int step = 0;  // 0 is the initial state at t = 0
+  double t = 0, dt = 0;
+  const InterfaceState& state;
+  const ContactSolution& solution;  // the commit solve
+  ContactResiduals residuals;       // its Signorini-Coulomb residuals
+  SolveCounts counts;               // solves of this step (stages and commit)
+  double cpu_seconds = 0;           // wall time of this step
+};
+
+class BetaOde final : public BetaSystem {
+ public:
+  using Observer = std::function<void(const AcceptedStep&)>;
+
+  BetaOde(const Model& model, std::unique_ptr<ContactSolver> solver, Observer observer = {});
+
+  int size() const override { return model_.contact_nodes(); }
+  double committed_time() const override { return committed_.t; }
+  const Eigen::VectorXd& committed_beta() const override { return committed_.beta; }
+  int steps() const override { return step_; }
+
+  /// Throws SolveError when the contact solve fails or beta is not finite.
+  void rhs(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> f) override;
+  void jacobian_diagonal(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> J) override;
+  void rate_independent_beta(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> out) override;
+  /// Also solves the contact at the accepted state, commits it and notifies the observer.
+  void accept(double t, Eigen::Ref<Eigen::VectorXd> beta) override;
+
+  const Model& model() const { return model_; }
+  const InterfaceState& committed() const { return committed_; }
+  const SolveCounts& totals() const { return totals_; }
+
+  /// How far an accepted beta may leave [0, previous beta] (round-off of the scheme's sums)
+  /// before warnings() reports it.
+  static constexpr double beta_slack = 1e-6;
+
+  /// The largest amount by which an accepted beta left [0, previous beta] before clamping.
+  struct Excursion {
+    double size = 0, t = 0;
+    int node = -1;
+  };
+
+  /// Takes up a run from a checkpoint: `state` becomes the committed state after `step`
+  /// accepted steps and `totals` solves, with the excursion seen so far (no solve, no
+  /// observer call).
+  void resume(const InterfaceState& state, int step, const SolveCounts& totals, const Excursion& excursion);
+
+  /// What the user must know: an accepted beta that left [0, previous beta] by more than
+  /// beta_slack (clamped).
+  std::vector<std::string> warnings() const;
+  const Excursion& excursion() const { return excursion_; }
+
+ private:
+  const ContactSolution& solve(double t, const Eigen::VectorXd& beta);
+  /// Throws SolveError naming the step, t and the first pair whose beta is NaN or Inf.
+  void check_finite(double t, const Eigen::VectorXd& beta, const char* what) const;
+
+  const Model& model_;
+  std::unique_ptr<ContactSolver> solver_;
+  Observer observer_;
+  InterfaceState committed_;
+  // The last solve, reused when asked again at the same (t, beta).
+  double last_t_ = -1;
+  Eigen::VectorXd last_beta_;
+  ContactSolution last_;
+  SolveCounts totals_, step_counts_;
+  int step_ = -1;
+  Excursion excursion_;
+  double step_start_ = 0;  // wall clock at the previous accepted step
+};
+
+}  // namespace rccm

@@ -1,0 +1,48 @@
+// The energy balance of a run (docs/MODEL.md s3):
+//   work of the external loads = bulk strain energy + change of interface free energy
+//                                + damage dissipation + friction dissipation,
+// each accumulated over accepted steps with the trapezoid rule. Exact for the continuous
+// problem; a time-discrete run violates it by O(dt^p).
+#pragma once
+
+#include "rccm/model/body_state.hpp"
+#include "rccm/model/interface_state.hpp"
+#include "rccm/model/model.hpp"
+
+namespace rccm {
+
+struct EnergyTerms {
+  double external_work = 0;         // int f_ext . du, N mm
+  double strain_energy = 0;         // 1/2 u^T K u
+  double free_energy_change = 0;    // sum a_i (psi_i(t) - psi_i(0)), psi = 1/2 beta^2 C u^2 - w beta
+  double damage_dissipation = 0;    // sum a_i int G dbeta  (= alpha beta'^2 dt >= 0)
+  double friction_dissipation = 0;  // sum -int Rbar_t . du_t >= 0
+  double normal_contact_work = 0;   // sum int Rbar_n du_n (0 by Signorini; reported, not balanced)
+
+  double imbalance() const {
+    return external_work - (strain_energy + free_energy_change + damage_dissipation + friction_dissipation);
+  }
+  /// |imbalance| relative to the largest term.
+  double relative_error() const;
+};
+
+class EnergyBalance {
+ public:
+  EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body);
+
+  /// Adds the step from the previous accepted state to this one.
+  void add(const InterfaceState& s, const BodyState& b);
+  /// Takes up the balance at a checkpoint: `terms` accumulated up to the state (s, b).
+  void resume(const InterfaceState& s, const BodyState& b, const EnergyTerms& terms);
+  const EnergyTerms& terms() const { return terms_; }
+
+ private:
+  double free_energy(const InterfaceState& s) const;
+  const Model& model_;
+  double psi0_;
+  InterfaceState previous_;
+  BodyState previous_body_;
+  EnergyTerms terms_;
+};
+
+}  // namespace rccm

@@ -1,0 +1,24 @@
+// The rate-independent limit alpha -> 0 (docs/MODEL.md s3):
+//   beta_{n+1} = min(beta_n, w / (Cn u_n^2 + Ct u_t^2)) with u from the contact solve at
+//   (t_{n+1}, beta_{n+1}), made consistent by a fixed point in each step. Starting from
+//   beta_n the iterates decrease monotonically to the largest consistent beta.
+#pragma once
+
+#include "rccm/time/integrator.hpp"
+
+namespace rccm {
+
+class RateIndependentIntegrator final : public FixedStepIntegrator {
+ public:
+  RateIndependentIntegrator(BetaSystem& ode, std::vector<double> grid, const IntegratorParams& p)
+      : FixedStepIntegrator(ode, std::move(grid)),
+        tolerance_(p.fixed_point_tolerance),
+        max_iterations_(p.fixed_point_iterations) {}
+
+ private:
+  void step(double t_new) override;
+  double tolerance_;
+  int max_iterations_;
+};
+
+}  // namespace rccm

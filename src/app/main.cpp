@@ -1,0 +1,162 @@
+// rccm: quasi-static FE contact with the RCCM interface law, solved by the bipotential method.
+// Exit status: 0 success, 2 bad input (nothing written), 3 a solve that failed, 1 anything else.
+#include "rccm/app/bench.hpp"
+#include "rccm/app/compare.hpp"
+#include "rccm/io/config_reader.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/app/simulation.hpp"
+#include "rccm/app/stop_request.hpp"
+#include "rccm/app/sweep.hpp"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <unistd.h>
+#include <filesystem>
+#include <iostream>
+#include <thread>
+
+namespace {
+
+void print_totals(const rccm::RunResult& r) {
+  const double per_solve = (r.wall_seconds - r.setup_seconds) / std::max(1L, r.solves.contact_solves);
+  std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d)\n"
+              "# wall %.3f s: setup %.4f s, %.1f us per contact solve\n",
+              r.integrator.steps, r.integrator.rejected, r.solves.contact_solves,
+              double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves), r.solves.max_sweeps, r.wall_seconds,
+              r.setup_seconds, 1e6 * per_solve);
+  for (const std::string& w : r.warnings) std::cerr << "rccm: warning: " << w << "\n";
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rccm: RCCM interface (contact, Coulomb friction, adhesion) by the bipotential method"};
+  app.require_subcommand(1);
+  std::string config_file;
+  std::vector<std::string> overrides, integrators{"arkode", "euler"};
+  bool quiet = false;
+  int euler_steps = 0;
+
+  CLI::App* run = app.add_subcommand("run", "run the problem of a config file");
+  CLI::App* compare = app.add_subcommand("compare", "run one problem with several integrators, side by side");
+  CLI::App* sweep = app.add_subcommand(
+      "sweep", "run a config for every value of listed settings (--set interface.alpha=0,0.1,1,10), in parallel");
+  int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  std::string sweep_dir;
+  sweep->add_option("--jobs,-j", jobs, "cases run at once (default: the machine's cores)")->check(CLI::PositiveNumber);
+  sweep->add_option("--output", sweep_dir, "directory of the cases and the summary (default: <output.directory>-sweep)");
+  for (CLI::App* sub : {run, compare, sweep}) {
+    sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
+    sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
+  }
+  CLI::App* bench = app.add_subcommand(
+      "bench", "time B1 and B2 with each integrator against the paper's totals; --scale: the refined B1 family");
+  std::string bench_dir = "config", bench_csv, bench_json;
+  int scale_levels = 0;
+  double scale_time = 1.0;
+  bench->add_option("--config-dir", bench_dir, "where b1.cfg and b2.cfg are (default: config)");
+  bench->add_option("--csv", bench_csv, "also write the table as CSV");
+  bench->add_option("--json", bench_json, "also write the table as JSON");
+  bench->add_option("--scale", scale_levels, "refined B1 family: levels 1x, 2x, 4x, ... cells in each direction")
+      ->check(CLI::Range(0, 12));
+  bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
+      ->check(CLI::PositiveNumber);
+  bool verbose = false, force = false;
+  run->add_flag("--quiet,-q", quiet, "no progress line");
+  for (CLI::App* sub : {run, sweep})
+    sub->add_flag("--force", force, "overwrite the results of an earlier run in the output directory");
+  run->add_flag("--verbose,-v", verbose, "one line per accepted step on stdout");
+  std::string restart_dir;
+  run->add_option("--restart", restart_dir,
+                  "go on from the checkpoint of an interrupted or failed run of the same config in DIR")
+      ->excludes("--force");
+  compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, fixed")
+      ->delimiter(',');
+  compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
+      ->check(CLI::PositiveNumber);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e) == 0 ? 0 : 2;
+  }
+
+  try {
+    if (*bench) {
+      std::vector<rccm::BenchRow> rows;
+      rccm::print_bench_header(std::cout);
+      for (const rccm::BenchCase& c : rccm::paper_cases(bench_dir)) {
+        rows.push_back(rccm::run_bench_case(c));
+        rccm::print_bench_row(std::cout, rows.back());
+      }
+      if (scale_levels > 0) {
+        std::vector<rccm::BenchRow> scale;
+        std::cout << "\n# refined B1, t in [0, " << scale_time << "] s\n";
+        rccm::print_bench_header(std::cout);
+        for (const rccm::BenchCase& c : rccm::scale_cases(bench_dir, scale_levels, scale_time)) {
+          scale.push_back(rccm::run_bench_case(c));
+          rccm::print_bench_row(std::cout, scale.back());
+        }
+        rccm::print_growth(std::cout, scale);
+        rows.insert(rows.end(), scale.begin(), scale.end());
+      }
+      if (!bench_csv.empty()) rccm::write_bench_csv(bench_csv, rows);
+      if (!bench_json.empty()) rccm::write_bench_json(bench_json, rows);
+      return 0;
+    }
+    if (*sweep) {
+      std::vector<rccm::SweepAxis> axes;
+      std::vector<std::string> fixed;
+      rccm::split_sweep_settings(overrides, axes, fixed);
+      if (axes.empty())
+        throw rccm::InputError("sweep: give at least one list, e.g. --set interface.alpha=0,0.01,0.1,1,10,100");
+      const rccm::Config cfg = rccm::load_config(config_file, fixed);
+      if (sweep_dir.empty()) sweep_dir = cfg.output.directory + "-sweep";
+      std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, sweep_dir);
+      std::filesystem::create_directories(sweep_dir);
+      std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << sweep_dir << "\n";
+      rccm::install_stop_handlers();
+      rccm::run_sweep(cases, jobs, force);
+      rccm::write_sweep_summary(std::cout, sweep_dir, cases, argv[0], config_file);
+      std::cout << "# " << sweep_dir << "/summary.csv, " << sweep_dir << "/jobs.txt; plots: tools/plot --overlay "
+                << sweep_dir << " " << sweep_dir << "/*\n";
+      for (const rccm::SweepCase& c : cases)
+        if (!c.error.empty()) return 3;
+      return 0;
+    }
+    // A restart writes where the run it continues wrote (a --set of the directory is the same).
+    if (!restart_dir.empty()) overrides.push_back("output.directory=\"" + restart_dir + "\"");
+    const rccm::Config cfg = rccm::load_config(config_file, overrides);
+    if (*run) {
+      rccm::RunOptions options;
+      options.step_log = verbose ? &std::cout : nullptr;
+      options.progress = !quiet && isatty(fileno(stderr));
+      options.write_files = true;
+      options.force = force;
+      options.restart = !restart_dir.empty();
+      rccm::install_stop_handlers();
+      const rccm::RunResult r = rccm::Simulation(cfg, options).run();
+      print_totals(r);
+      std::printf("# results in %s (report.txt, interface_t*.csv, history.csv, curves.csv, results.pvd)\n",
+                  cfg.output.directory.c_str());
+    } else {
+      std::cout << "# " << config_file << "\n";
+      rccm::print_comparison(std::cout, rccm::run_comparison(cfg, integrators, euler_steps));
+    }
+    return 0;
+  } catch (const rccm::InputError& e) {
+    std::cerr << "rccm: error: " << e.what() << "\n";
+    return 2;
+  } catch (const rccm::SolveError& e) {
+    std::cerr << "rccm: run failed: " << e.what() << "\n  the results up to the last accepted step are in the "
+              << "output directory (report.txt says where it stopped)\n";
+    return 3;
+  } catch (const rccm::Interrupted& e) {
+    std::cerr << "rccm: " << e.what() << "; the results up to that step are complete in the output directory\n";
+    return 128 + e.signal;
+  } catch (const std::exception& e) {
+    std::cerr << "rccm: internal error: " << e.what() << "\n";
+    return 1;
+  }
+}

@@ -1,0 +1,41 @@
+#include "rccm/app/simulation.hpp"
+
+#include "rccm/app/stop_request.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/contact/contact_solver.hpp"
+#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/model/model.hpp"
+#include "rccm/time/beta_ode.hpp"
+#include "rccm/time/integrator.hpp"
+
+namespace rccm {
+
+RunResult Simulation::run() {
+  Recorder recorder(cfg_, options_);                  // the output directory checked, or the checkpoint read
+  const Model model(cfg_, make_rectangle(cfg_.mesh));  // mesh, loads, body (K0 factorized once), interface, W0
+  recorder.open(model);                               // result files, only now that the input is known good
+  BetaOde ode(model, make_contact_solver(cfg_.solver), [&](const AcceptedStep& a) {
+    recorder.step(a);  // energy, files, logs, checkpoints
+    throw_if_stop_requested(a.step, a.t);
+  });
+  recorder.start(ode);  // beta0 at t = 0, or the checkpoint's state
+  const auto integrator = make_integrator(ode, cfg_, recorder.initial_step());
+  recorder.attach(*integrator);
+  try {
+    for (double t_out : stop_times(cfg_.time.T, cfg_.output.times)) {
+      if (recorder.has_snapshot(t_out)) continue;  // taken before a restart's checkpoint
+      if (ode.committed_time() < t_out - 1e-12 * cfg_.time.T)
+        integrator->advance(t_out);  // beta to t_out: one contact solve per stage, one per accepted step
+      recorder.snapshot();           // the interface and the mesh at t_out
+    }
+  } catch (const SolveError& e) {
+    recorder.finish(std::string("failed: ") + e.what());
+    throw;
+  } catch (const Interrupted& e) {
+    recorder.finish(e.what());
+    throw;
+  }
+  return recorder.finish();
+}
+
+}  // namespace rccm

@@ -1,0 +1,217 @@
+#include "rccm/contact/active_set.hpp"
+
+#include "rccm/contact/solver_tuning.hpp"
+#include "rccm/la/gmres.hpp"
+
+#include <cmath>
+
+namespace rccm {
+
+template <int dim>
+Eigen::VectorXd ActiveSetSystem<dim>::constraint_values(const ContactProblem& pb, const Pattern& pattern,
+                                                        const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
+  const auto Rbar = [&](Eigen::Index c) { return y[c] - (pb.D1[c] - pb.Dbeta[c]) * u[c]; };
+  Eigen::VectorXd v(y.size());
+  for (int i = 0; i < pb.size(); ++i) {
+    const Eigen::Index first = Eigen::Index(dim) * i, n = first + dim - 1;
+    switch (pattern[i].status) {
+      case Status::Separated:
+        for (int k = 0; k < dim; ++k) v[first + k] = Rbar(first + k);
+        break;
+      case Status::Stick:
+        for (int k = 0; k < dim; ++k) v[first + k] = u[first + k];
+        break;
+      case Status::Slide:
+        for (int k = 0; k < dim - 1; ++k) v[first + k] = Rbar(first + k) - pattern[i].direction[k] * pb.mubar[i] * Rbar(n);
+        v[n] = u[n];
+    }
+  }
+  return v;
+}
+
+template <int dim>
+Eigen::VectorXd ActiveSetSystem<dim>::residual(const ContactProblem& pb, const Pattern& pattern,
+                                               const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
+  Eigen::VectorXd r = constraint_values(pb, pattern, y, u);
+  r = -r;
+  for (int i = 0; i < pb.size(); ++i) {
+    if (pattern[i].status == Status::Separated) continue;
+    const Eigen::Index first = Eigen::Index(dim) * i, n = first + dim - 1;
+    if (pattern[i].status == Status::Stick)
+      for (int k = 0; k < dim - 1; ++k) r[first + k] += pb.u_ref[first + k];  // no slip
+    r[n] -= pb.g0[i];                                                         // closed gap
+  }
+  return r;
+}
+
+template <int dim>
+template <class Rows>
+void ActiveSetSystem<dim>::rows(const ContactProblem& pb, const PairRows& kind, int i, Rows&& out) const {
+  const Eigen::MatrixXd& W = *pb.W0->dense();
+  const Eigen::Index first = Eigen::Index(dim) * i, n = first + dim - 1;
+  const auto E = [&](Eigen::Index c) { return pb.D1[c] - pb.Dbeta[c]; };
+  // Row c of W0 read as its column (W0 is symmetric: contiguous in memory). The row of Rbar_c
+  // as a function of y is e_c - E_c W0_c.
+  switch (kind.status) {
+    case Status::Separated:
+      for (int k = 0; k < dim; ++k) out.row(k) = -E(first + k) * W.col(first + k).transpose(), out(k, first + k) += 1.0;
+      break;
+    case Status::Stick:
+      for (int k = 0; k < dim; ++k) out.row(k) = W.col(first + k).transpose();
+      break;
+    case Status::Slide:
+      for (int k = 0; k < dim - 1; ++k) {
+        const double s = kind.direction[k] * pb.mubar[i];  // Rbar_t,k - s Rbar_n
+        out.row(k) = -E(first + k) * W.col(first + k).transpose() + s * E(n) * W.col(n).transpose();
+        out(k, first + k) += 1.0, out(k, n) -= s;
+      }
+      out.row(dim - 1) = W.col(n).transpose();
+  }
+}
+
+template <int dim>
+bool ActiveSetSystem<dim>::rows_moved(const ContactProblem& pb, const PairRows& kind, int i) const {
+  if (kind.status == Status::Stick) return false;  // u rows: no beta in them
+  const Eigen::Index first = Eigen::Index(dim) * i;
+  bool spring = false;
+  for (int k = 0; k < dim; ++k) {
+    const Eigen::Index c = first + k;
+    spring = spring || std::abs(pb.D1[c] - pb.Dbeta[c] - E0_[c]) > tuning::row_drift * pb.D1[c];
+  }
+  return kind.status == Status::Separated ? spring : spring || std::abs(pb.mubar[i] - mubar0_[i]) > tuning::row_drift;
+}
+
+template <int dim>
+bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& pattern) {
+  std::vector<int> changed;
+  for (int i = 0; i < pb.size(); ++i)
+    if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], i)) changed.push_back(i);
+  const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = A0_.rows();
+  D_.resize(c, m);
+  if (c == 0) return true;
+  if (2 * c > m) return false;  // a new factorization costs less
+  // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1
+  // (gathered from the inverse once there is one, c solves with the LU before).
+  if (++reuses_ >= 2) inverse();
+  Eigen::MatrixXd S = Eigen::MatrixXd::Zero(inverse_ready_ ? 0 : m, c);
+  Z_.resize(m, c);
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    const int i = changed[k];
+    const Eigen::Index row = dim * static_cast<Eigen::Index>(k), first = Eigen::Index(dim) * i;
+    rows(pb, pattern[i], i, D_.template middleRows<dim>(row));
+    D_.template middleRows<dim>(row) -= A0_.template middleRows<dim>(first);
+    if (inverse_ready_)
+      Z_.template middleCols<dim>(row) = A0_inverse_.template middleCols<dim>(first);
+    else
+      for (int d = 0; d < dim; ++d) S(first + d, row + d) = 1.0;
+  }
+  if (!inverse_ready_) Z_ = lu_.solve(S);
+  capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
+  // Pending while small (c^2 m per solve, c m per product); beyond m/8 rows folded into A0.
+  if (c <= m / tuning::fold_fraction) return true;
+  const Eigen::MatrixXd correction = capacitance_.solve(D_ * inverse());
+  if (!correction.allFinite()) return false;
+  A0_inverse_.noalias() -= Z_ * correction;
+  for (std::size_t k = 0; k < changed.size(); ++k) {
+    const int i = changed[k];
+    const Eigen::Index first = Eigen::Index(dim) * i;
+    A0_.template middleRows<dim>(first) += D_.template middleRows<dim>(dim * static_cast<Eigen::Index>(k));
+    factorized_[i] = pattern[i];
+    E0_.template segment<dim>(first) = pb.D1.template segment<dim>(first) - pb.Dbeta.template segment<dim>(first);
+    mubar0_[i] = pb.mubar[i];
+  }
+  D_.resize(0, m);
+  return true;
+}
+
+template <int dim>
+Eigen::VectorXd ActiveSetSystem<dim>::apply_inverse(const Eigen::VectorXd& r) {
+  Eigen::VectorXd x = inverse_ready_ ? Eigen::VectorXd(A0_inverse_ * r) : Eigen::VectorXd(lu_.solve(r));
+  if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
+  return x;
+}
+
+template <int dim>
+const Eigen::MatrixXd& ActiveSetSystem<dim>::inverse() {
+  if (!inverse_ready_) A0_inverse_ = lu_.inverse();
+  inverse_ready_ = true;
+  return A0_inverse_;
+}
+
+template <int dim>
+void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pattern) {
+  A0_.resize(pb.W0->size(), pb.W0->size());
+  for (int i = 0; i < pb.size(); ++i) rows(pb, pattern[i], i, A0_.template middleRows<dim>(Eigen::Index(dim) * i));
+  lu_.compute(A0_);
+  inverse_ready_ = false;
+  reuses_ = 0;
+  factorized_ = pattern;
+  E0_ = pb.D1 - pb.Dbeta;
+  mubar0_ = pb.mubar;
+  D_.resize(0, A0_.rows());
+}
+
+template <int dim>
+bool ActiveSetSystem<dim>::solve(const ContactProblem& pb, const Pattern& pattern, Eigen::VectorXd& y,
+                                 Eigen::VectorXd& u) {
+  const DelassusOperator& W = *pb.W0;
+  Eigen::VectorXd r = residual(pb, pattern, y, u);
+  const double r0 = r.norm();
+  if (r0 == 0) return true;
+  if (factorized_.size() == pattern.size() && update(pb, pattern)) {
+    // A correction is taken when it gains a factor 10 on the residual, or leaves y unmoved.
+    enum class Outcome { Converged, Progress, Stalled };
+    double previous = r0;
+    const auto take = [&](const Eigen::VectorXd& dy, const Eigen::VectorXd& du) {
+      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy, u + du);
+      const double norm = r_next.norm();
+      const bool still = dy.norm() <= tuning::unmoved * y.norm();
+      if (!std::isfinite(norm) || (norm > tuning::refinement_gain * previous && !still)) return Outcome::Stalled;
+      y += dy, u += du, r = r_next, previous = norm;
+      return still || norm <= tuning::converged_residual * r0 ? Outcome::Converged : Outcome::Progress;
+    };
+    // Refinement with the corrected inverse: two products of W0's size per step.
+    Outcome outcome = Outcome::Progress;
+    for (int k = 0; k < tuning::refinement_steps && outcome == Outcome::Progress; ++k) {
+      const Eigen::VectorXd dy = apply_inverse(r);
+      Eigen::VectorXd du(dy.size());
+      W.multiply(dy, du);
+      outcome = take(dy, du);
+    }
+    // Stalled or slow (the inverse's round-off, or a drift it does not absorb): GMRES with the
+    // same preconditioner, before a new factorization. The products W0 M v it forms are kept, so
+    // that u follows y without one more product with W0.
+    if (outcome != Outcome::Converged) {
+      const int max_iterations = tuning::gmres_iterations;
+      Eigen::MatrixXd Wz(W.size(), max_iterations);
+      int products = 0;
+      const LinearMap A = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
+        W.multiply(z, Wz.col(products));
+        return constraint_values(pb, pattern, z, Wz.col(products++));
+      };
+      const LinearMap M = [&](const Eigen::VectorXd& v) { return apply_inverse(v); };
+      outcome = Outcome::Progress;
+      for (int pass = 0; pass < tuning::gmres_passes && outcome == Outcome::Progress; ++pass) {
+        products = 0;
+        const GmresResult g = gmres(A, M, r, tuning::gmres_tolerance, max_iterations);
+        outcome = g.iterations == 0 ? Outcome::Stalled : take(g.x, Wz.leftCols(g.iterations) * g.coefficients);
+      }
+    }
+    if (outcome == Outcome::Converged) return true;
+  }
+  factorize(pb, pattern);
+  const Eigen::VectorXd dy = lu_.solve(r);
+  if (!dy.allFinite()) {  // singular
+    factorized_.clear();
+    return false;
+  }
+  y += dy;
+  W.multiply(y, u);
+  u += pb.q0;
+  return true;
+}
+
+template class ActiveSetSystem<2>;
+template class ActiveSetSystem<3>;
+
+}  // namespace rccm

@@ -1,0 +1,350 @@
+#include "rccm/contact/bipotential_solver.hpp"
+
+#include "rccm/base/errors.hpp"
+#include "rccm/contact/solver_tuning.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+/// Pair i's dim components of a stacked interface vector (layout.hpp), as a fixed-size view.
+template <int dim, class V>
+auto pair(V& v, int i) {
+  return v.template segment<dim>(Eigen::Index(dim) * i);
+}
+
+/// The largest eigenvalue of a symmetric 2 x 2 (closed form) or 3 x 3 matrix.
+double largest_eigenvalue(const Eigen::Matrix2d& S) {
+  const double half_trace = 0.5 * (S(0, 0) + S(1, 1)), half_gap = 0.5 * (S(0, 0) - S(1, 1));
+  return half_trace + std::hypot(half_gap, S(0, 1));
+}
+double largest_eigenvalue(const Eigen::Matrix3d& S) {
+  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S, Eigen::EigenvaluesOnly).eigenvalues()[2];
+}
+
+/// What pair i needs for its local solve, fixed during one contact solve. With
+/// c = M (u_i - W_ii y_i) (the other pairs' contribution), the pair's displacement as a
+/// function of its own Rbar is u_i = Wb Rbar + c, where M = (I - W_ii E_i)^-1 and
+/// Wb = M W_ii: the spring is folded in (docs/MODEL.md s4).
+template <int dim>
+struct PairBlock {
+  using Vec = Eigen::Matrix<double, dim, 1>;
+  using Mat = Eigen::Matrix<double, dim, dim>;
+  Mat Wii;                  // diagonal block of W0
+  Vec E;                    // D1 - D(beta)
+  Mat M, Wb;                // (I - W_ii E)^-1 and the effective flexibility
+  Vec g0_shift;             // (-u_ref,t, g0): u_i + g0_shift = (du_t, g), the slip and the gap
+  double mubar;             // mu (1 - beta)
+  double rho;               // predictor step, N/mm
+  bool prescribed;          // every component prescribed: u_i does not depend on Rbar_i
+
+  /// The predictor of paper eq. 35 at local displacement u_i: tau = R - rho s(u_i).
+  Vec predictor(const Vec& R, const Vec& u_i) const { return R - rho * modified_velocity(u_i + g0_shift, mubar); }
+};
+
+template <int dim>
+std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) {
+  using Mat = typename PairBlock<dim>::Mat;
+  std::vector<PairBlock<dim>> blocks;
+  blocks.reserve(pb.size());
+  const double scale = pb.W0->diagonal_scale();
+  for (int i = 0; i < pb.size(); ++i) {
+    PairBlock<dim> b;  // default-initialized: every member is set below
+    b.Wii = pb.W0->block(pb.layout.offset(i), dim);
+    b.E = pair<dim>(pb.D1, i) - pair<dim>(pb.Dbeta, i);
+    b.g0_shift = -pair<dim>(pb.u_ref, i);
+    b.g0_shift[dim - 1] = pb.g0[i];
+    b.mubar = pb.mubar[i];
+    const Mat A = Mat::Identity() - b.Wii * b.E.asDiagonal();
+    if (std::abs(A.determinant()) < tuning::singular_pair) {
+      std::ostringstream m;
+      m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
+        << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
+      throw SolveError(m.str());
+    }
+    b.M = A.inverse();
+    b.Wb = b.M * b.Wii;
+    b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
+    const double lmax = largest_eigenvalue(b.Wb);
+    b.prescribed = lmax <= tuning::prescribed_pair * scale;
+    if (b.prescribed) {
+      b.rho = 0;
+    } else if (rule == RhoRule::Eigen) {
+      b.rho = 1.0 / lmax;
+    } else {  // paper eq. 34 (on the flexibility with the springs)
+      const double dmin = b.Wb.diagonal().minCoeff();
+      b.rho = 1.0 / (dmin > 0 ? dmin : lmax);
+    }
+    blocks.push_back(b);
+  }
+  return blocks;
+}
+
+/// The rows of each pair in the exact step, from its status and the direction of its friction.
+template <int dim>
+Pattern pattern_of(const std::vector<Status>& status, const std::vector<PairBlock<dim>>& blocks,
+                   const Eigen::VectorXd& Rbar) {
+  Pattern p(status.size());
+  for (std::size_t i = 0; i < status.size(); ++i) {
+    p[i].status = blocks[i].prescribed ? Status::Separated : status[i];
+    if (p[i].status != Status::Slide) continue;
+    const Eigen::Matrix<double, dim, 1> R = pair<dim>(Rbar, int(i));
+    const double Rt = tangential_norm(R);
+    if (Rt > 0)
+      p[i].direction.head<dim - 1>() = R.template head<dim - 1>() / Rt;
+    else
+      p[i].direction[0] = -1.0;
+  }
+  return p;
+}
+
+}  // namespace
+
+/// The state of one contact solve: y = Rbar + E u, u = W0 y + q0 and Rbar, the pairs' blocks,
+/// and what each pass finds.
+template <int dim>
+class BipotentialSolver::Iteration {
+  using Vec = Eigen::Matrix<double, dim, 1>;
+
+ public:
+  Iteration(const ContactProblem& pb, const SolverParams& params, const Eigen::VectorXd& Rbar_start,
+            const Eigen::VectorXd& u_start)
+      : pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), E_(pb.D1 - pb.Dbeta) {
+    const Eigen::Index m = pb.W0->size();
+    // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
+    s.Rbar = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
+    s.y = s.Rbar;
+    if (u_start.size() == m) s.y += E_.cwiseProduct(u_start);
+    s.status.assign(pb.size(), Status::Separated);
+    for (int i = 0; i < pb.size(); ++i)
+      if (blocks_[i].prescribed) pair<dim>(s.Rbar, i).setZero(), pair<dim>(s.y, i).setZero();
+    s.u.resize(m);
+    refresh();
+    s.Rbar = s.y - E_.cwiseProduct(s.u);
+    R_projected_ = Eigen::VectorXd::Zero(m);
+    R_branch_ = Eigen::VectorXd::Zero(m);
+    branch_.assign(pb.size(), Status::Separated);
+  }
+
+  ContactSolution s;
+
+  /// A predictor-corrector pass at the current (Rbar, u) that changes nothing: each pair's
+  /// branch and projection, and the largest natural-map residual |Rbar - proj(Rbar - rho s)|
+  /// scaled by the pair's force level. Returns the force scale of the problem.
+  double verify() {
+    const Eigen::VectorXd Radh = -pb_.Dbeta.cwiseProduct(s.u);
+    const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
+    const double floor = noise_floor() / params_.tolerance;
+    s.residual = 0;
+    s.worst_node = -1;
+    for (int i = 0; i < pb_.size(); ++i) {
+      const PairBlock<dim>& b = blocks_[i];
+      // A pair with every component prescribed takes no part: its Rbar is 0 by convention.
+      const Vec R = b.prescribed ? Vec::Zero() : Vec(pair<dim>(s.Rbar, i));
+      const Vec tau = b.predictor(R, pair<dim>(s.u, i));                              // eq. 35
+      branch_[i] = b.prescribed ? Status::Separated : cone_branch(tau, b.mubar);
+      pair<dim>(R_branch_, i) = b.prescribed ? R : project_cone(tau, b.mubar);  // eqs. 36-38
+      const double level =
+          std::max({R.norm() + pair<dim>(Radh, i).norm(), tuning::residual_level_floor * F, floor});
+      const double r = (R - pair<dim>(R_branch_, i)).norm() / level;
+      if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
+    }
+    return std::max(F, floor);
+  }
+
+  /// One sweep of the predictor-corrector over every pair (paper eqs. 35-38): Gauss-Seidel
+  /// updates u after each pair (docs/MODEL.md s5: far more robust), the paper's Jacobi form
+  /// after the sweep.
+  void sweep() {
+    const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
+    const int local_steps = gauss_seidel ? params_.local_iterations : 1;  // Jacobi: the paper's one step
+    const double noise = noise_floor();
+    const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
+    Eigen::VectorXd y_new = s.y;
+    for (int i = 0; i < pb_.size(); ++i) {
+      const PairBlock<dim>& b = blocks_[i];
+      if (b.prescribed) continue;
+      const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
+      Vec R = pair<dim>(s.Rbar, i), ui = b.Wb * R + c;
+      for (int k = 0; k < local_steps; ++k) {
+        const Vec tau = b.predictor(R, ui);             // predictor, eq. 35
+        const Vec R_next = project_cone(tau, b.mubar);  // corrector, eqs. 36-38
+        s.status[i] = cone_branch(tau, b.mubar);
+        const double change = (R_next - R).norm();
+        R = R_next;
+        ui = b.Wb * R + c;
+        if (change <= tuning::local_tolerance_fraction * params_.tolerance * std::max(R.norm(), F_old) + noise) break;
+      }
+      pair<dim>(R_projected_, i) = R;
+      const Vec yi = R + b.E.cwiseProduct(ui);
+      if (gauss_seidel) {
+        pb_.W0->add_response(pb_.layout.offset(i), yi - pair<dim>(s.y, i), s.u);
+        pair<dim>(s.y, i) = yi;
+        pair<dim>(s.Rbar, i) = R;
+      } else {
+        pair<dim>(y_new, i) = yi;
+      }
+    }
+    if (!gauss_seidel) s.y += params_.relaxation * (y_new - s.y);
+  }
+
+  /// After a sweep: Rbar = y - E u, and whether its relative change since R_old and the
+  /// scaled natural-map residual are both below the tolerance. A fresh u = W0 y + q0 every
+  /// tuning::refresh_interval sweeps, and to confirm convergence (Jacobi: every sweep).
+  bool converged_after_sweep(const Eigen::VectorXd& R_old) {
+    const bool fresh = params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0;
+    if (fresh) refresh();
+    bool converged = criteria_hold(R_old);
+    if (converged && !fresh) {
+      refresh();
+      converged = criteria_hold(R_old);
+    }
+    if (converged) {
+      s.converged = true;
+      s.Rbar = R_projected_;  // in the cone by construction (y - E u differs by round-off)
+    }
+    return converged;
+  }
+
+  /// The verifying pass found the solution: its branches and projections are the result.
+  bool verified() {
+    if (s.residual > params_.tolerance) return false;
+    s.converged = true;
+    s.status = branch_;
+    s.Rbar = R_branch_;
+    return true;
+  }
+
+  /// The pattern of the last verifying pass, and of the last sweep.
+  Pattern verified_pattern() const { return pattern_of<dim>(branch_, blocks_, R_branch_); }
+  Pattern swept_pattern() const { return pattern_of<dim>(s.status, blocks_, s.Rbar); }
+
+  /// An exact step of the active-set system for `pattern`; false if its matrix is singular.
+  bool exact_step(ActiveSetSystem<dim>& system, const Pattern& pattern) {
+    if (!system.solve(pb_, pattern, s.y, s.u)) return false;
+    s.Rbar = s.y - E_.cwiseProduct(s.u);
+    return true;
+  }
+
+ private:
+  /// Rbar = y - E u cancels where beta -> 0 and the initial spring force E u is large: the
+  /// attainable absolute accuracy of Rbar is about eps |y| (a floor for both criteria).
+  double noise_floor() const {
+    return tuning::cancellation_floor * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff();
+  }
+  void refresh() {
+    pb_.W0->multiply(s.y, s.u);
+    s.u += pb_.q0;
+  }
+  bool criteria_hold(const Eigen::VectorXd& R_old) {
+    s.Rbar = s.y - E_.cwiseProduct(s.u);
+    const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / verify();
+    return change <= params_.tolerance && s.residual <= params_.tolerance;
+  }
+
+  const ContactProblem& pb_;
+  const SolverParams& params_;
+  const std::vector<PairBlock<dim>> blocks_;
+  const Eigen::VectorXd E_;
+  Eigen::VectorXd R_projected_;  // the projections of the last sweep: the reported Rbar
+  std::vector<Status> branch_;   // of the last verifying pass
+  Eigen::VectorXd R_branch_;
+};
+
+ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                         const Eigen::VectorXd& u_start) {
+  const Eigen::Index m = pb.W0->size();
+  RCCM_VERIFY(pb.q0.size() == m && pb.layout.offset(pb.size()) == m, "contact problem sizes");
+  // No load (q0 = 0, e.g. t = 0): the solution is exactly zero. Iterating towards it from a
+  // warm start would shrink Rbar geometrically while its relative change stays constant.
+  if (pb.q0.isZero(0.0)) {
+    ContactSolution zero;
+    zero.Rbar = zero.y = zero.u = Eigen::VectorXd::Zero(m);
+    zero.status.assign(pb.size(), Status::Separated);
+    zero.converged = true;
+    return zero;
+  }
+  RCCM_VERIFY(pb.layout.dim == 2 || pb.layout.dim == 3, "contact pairs of 2 or 3 components");
+  return pb.layout.dim == 2 ? solve_in<2>(pb, Rbar_start, u_start) : solve_in<3>(pb, Rbar_start, u_start);
+}
+
+template <>
+ActiveSetSystem<2>& BipotentialSolver::active_set<2>() {
+  return active_set_2d_;
+}
+template <>
+ActiveSetSystem<3>& BipotentialSolver::active_set<3>() {
+  return active_set_3d_;
+}
+
+template <int dim>
+ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                            const Eigen::VectorXd& u_start) {
+  Iteration<dim> it(pb, params_, Rbar_start, u_start);
+  ContactSolution& s = it.s;
+  const bool exact = params_.active_set && pb.size() <= params_.active_set_max_nodes && pb.W0->dense();
+  const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
+
+  // Exact steps first (a primal-dual active-set iteration): from a warm start the pattern of
+  // the nearby solution is usually still right, and one exact solve of its linear problem
+  // leaves a single verifying pass. A pattern that does not settle is left to the sweeps.
+  if (exact && gauss_seidel && Rbar_start.size() == pb.W0->size()) {
+    Pattern tried;
+    for (int k = 0; k < tuning::exact_first_patterns && s.iterations < params_.max_iterations; ++k) {
+      ++s.iterations;
+      it.verify();
+      if (it.verified()) return s;
+      const Pattern pattern = it.verified_pattern();
+      if (pattern == tried || !it.exact_step(active_set<dim>(), pattern)) break;
+      tried = pattern;
+      ++s.exact_solves;
+    }
+  }
+
+  // Sweeps; once the pattern repeats, an exact step for it (then verified by the next
+  // sweep), and again every few sweeps if the same pattern persists unconverged. The warm
+  // start's pattern counts as seen: the exact step may follow the first sweep.
+  Pattern previous = active_set<dim>().pattern(), solved;
+  int repeats = 0, since_exact = 0;
+  for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
+    const Eigen::VectorXd R_old = s.Rbar;
+    it.sweep();
+    if (it.converged_after_sweep(R_old)) break;
+    const Pattern pattern = it.swept_pattern();
+    repeats = pattern == previous ? repeats + 1 : 0;
+    previous = pattern;
+    ++since_exact;
+    if (exact && repeats >= 1 && (pattern != solved || since_exact >= tuning::exact_step_interval) &&
+        s.exact_solves < tuning::max_exact_steps) {
+      it.exact_step(active_set<dim>(), pattern);  // if singular, the sweeps go on
+      ++s.exact_solves;
+      since_exact = 0;
+      solved = pattern;
+    }
+  }
+  if (!s.converged) s.iterations = params_.max_iterations;
+  return s;
+}
+
+std::string BipotentialSolver::failure_advice() const {
+  std::ostringstream m;
+  if (params_.form == SweepForm::Jacobi)
+    m << "the Jacobi form diverges on strongly coupled interfaces: use solver.form = \"gauss-seidel\" "
+      << "or under-relax it (solver.relaxation = 0.2 works on B2)";
+  else
+    m << "raise solver.max_iterations, loosen solver.tolerance (" << params_.tolerance << ") or take smaller steps";
+  return m.str();
+}
+
+std::unique_ptr<ContactSolver> make_contact_solver(const SolverParams& params) {
+  return std::make_unique<BipotentialSolver>(params);
+}
+
+}  // namespace rccm

@@ -1,0 +1,41 @@
+#include "rccm/contact/condensation.hpp"
+
+namespace rccm {
+
+namespace {
+
+Eigen::MatrixXd unit_responses(const ElasticProblem& body, const std::vector<LoadCase>& loads, Eigen::Index ndof) {
+  const Eigen::Index nl = static_cast<Eigen::Index>(loads.size());
+  Eigen::MatrixXd f(ndof, nl), ud(ndof, nl);
+  for (Eigen::Index k = 0; k < nl; ++k) {
+    f.col(k) = loads[k].force;
+    ud.col(k) = loads[k].displacement;
+  }
+  return body.solve(f, ud);
+}
+
+}  // namespace
+
+Condensation::Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads)
+    : body_(body),
+      interface_(interface),
+      U_(unit_responses(body, loads, interface.P.cols())),
+      Q_(interface.P * U_),
+      W0_(body.flexibility(interface.P)) {
+  for (const LoadCase& lc : loads) amplitudes_.push_back(lc.amplitude);
+}
+
+Eigen::VectorXd Condensation::q0(double t) const {
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(Q_.rows());
+  for (std::size_t k = 0; k < amplitudes_.size(); ++k) q += amplitudes_[k](t) * Q_.col(k);
+  return q;
+}
+
+Eigen::VectorXd Condensation::displacement(double t, const Eigen::VectorXd& y) const {
+  const Eigen::Index ndof = interface_.P.cols();
+  Eigen::VectorXd u = body_.solve(interface_.P.transpose() * y, Eigen::MatrixXd::Zero(ndof, 1));
+  for (std::size_t k = 0; k < amplitudes_.size(); ++k) u += amplitudes_[k](t) * U_.col(k);
+  return u;
+}
+
+}  // namespace rccm

@@ -1,0 +1,98 @@
+#include "rccm/fem/elastic_problem.hpp"
+
+#include "rccm/base/errors.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <sstream>
+
+namespace rccm {
+
+ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
+                               const std::vector<int>& interface_dofs)
+    : prescribed_(std::move(prescribed)), free_index_(K.rows(), -1) {
+  std::sort(prescribed_.begin(), prescribed_.end());
+  std::vector<char> is_prescribed(K.rows(), 0);
+  for (int d : prescribed_) is_prescribed[d] = 1;
+  for (int d = 0; d < K.rows(); ++d)
+    if (!is_prescribed[d]) {
+      free_index_[d] = static_cast<int>(free_.size());
+      free_.push_back(d);
+    }
+  std::vector<int> prescribed_index(K.rows(), -1);
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) prescribed_index[prescribed_[k]] = static_cast<int>(k);
+
+  const SparseMatrix K0 = K + springs;
+  std::vector<Eigen::Triplet<double>> ff, fd;
+  for (int col = 0; col < K0.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(K0, col); it; ++it) {
+      const int i = free_index_[it.row()];
+      if (i < 0) continue;
+      if (free_index_[col] >= 0)
+        ff.emplace_back(i, free_index_[col], it.value());
+      else
+        fd.emplace_back(i, prescribed_index[col], it.value());
+    }
+  const int nf = static_cast<int>(free_.size()), nd = static_cast<int>(prescribed_.size());
+  SparseMatrix K0_FF(nf, nf);
+  K0_FF.setFromTriplets(ff.begin(), ff.end());
+  K0_FD_.resize(nf, nd);
+  K0_FD_.setFromTriplets(fd.begin(), fd.end());
+
+  std::vector<int> last;  // the free interface DOFs, among the free DOFs
+  for (int d : interface_dofs)
+    if (free_index_[d] >= 0) last.push_back(free_index_[d]);
+  std::sort(last.begin(), last.end());
+  last.erase(std::unique(last.begin(), last.end()), last.end());
+  factor_ = std::make_unique<CholmodFactor>(K0_FF, last);
+  // A floating body gives a zero pivot or, in floating point, a tiny one.
+  if (!factor_->ok() || factor_->rcond() < 1e-14) {
+    std::ostringstream m;
+    m << "the structure is not restrained: its stiffness with the interface springs is singular"
+      << " (CHOLMOD rcond " << (factor_->ok() ? factor_->rcond() : 0.0)
+      << "); add a prescribed displacement on a node set or an interface that holds the body";
+    throw InputError(m.str());
+  }
+}
+
+Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
+  const std::vector<int>& order = factor_->trailing_order();  // free indices of the interface DOFs
+  std::vector<int> position(free_.size(), -1);
+  for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int>(k);
+  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(order.size()), P.rows());  // P_C^T
+  for (int col = 0; col < P.outerSize(); ++col)
+    for (SparseMatrix::InnerIterator it(P, col); it; ++it) {
+      const int f = free_index_[col];
+      if (f < 0) continue;  // a prescribed DOF: zero displacement under interface forces
+      RCCM_VERIFY(position[f] >= 0, "flexibility(): P reads a DOF that was not ordered last");
+      G(position[f], it.row()) = it.value();
+    }
+  factor_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
+  Eigen::MatrixXd W = Eigen::MatrixXd::Zero(P.rows(), P.rows());
+  W.selfadjointView<Eigen::Lower>().rankUpdate(G.transpose());
+  return W.selfadjointView<Eigen::Lower>();
+}
+
+Eigen::MatrixXd ElasticProblem::restrict_free(const Eigen::MatrixXd& full) const {
+  Eigen::MatrixXd out(free_.size(), full.cols());
+  for (std::size_t i = 0; i < free_.size(); ++i) out.row(i) = full.row(free_[i]);
+  return out;
+}
+
+Eigen::MatrixXd ElasticProblem::extend_free(const Eigen::MatrixXd& free) const {
+  Eigen::MatrixXd out = Eigen::MatrixXd::Zero(free_index_.size(), free.cols());
+  for (std::size_t i = 0; i < free_.size(); ++i) out.row(free_[i]) = free.row(i);
+  return out;
+}
+
+Eigen::MatrixXd ElasticProblem::solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& u_prescribed) const {
+  Eigen::MatrixXd uD(prescribed_.size(), u_prescribed.cols());
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) uD.row(k) = u_prescribed.row(prescribed_[k]);
+  const Eigen::MatrixXd rhs = restrict_free(f) - K0_FD_ * uD;
+  Eigen::MatrixXd u = extend_free(factor_->solve(rhs));
+  for (std::size_t k = 0; k < prescribed_.size(); ++k) u.row(prescribed_[k]) = uD.row(k);
+  return u;
+}
+
+}  // namespace rccm

@@ -1,0 +1,24 @@
+#include "rccm/io/atomic_file.hpp"
+
+#include "rccm/base/errors.hpp"
+
+#include <cstdio>
+
+namespace rccm {
+
+AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), temporary_(path_ + ".tmp"), out_(temporary_) {
+  if (!out_) throw SolveError("cannot write " + temporary_);
+}
+
+AtomicFile::~AtomicFile() {
+  if (!committed_) std::remove(temporary_.c_str());
+}
+
+void AtomicFile::commit() {
+  out_.close();
+  if (!out_ || std::rename(temporary_.c_str(), path_.c_str()) != 0)
+    throw SolveError("cannot write " + path_ + " (disk full or directory removed?)");
+  committed_ = true;
+}
+
+}  // namespace rccm

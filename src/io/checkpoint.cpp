@@ -1,0 +1,207 @@
+#include "rccm/io/checkpoint.hpp"
+
+#include "rccm/io/atomic_file.hpp"
+#include "rccm/base/errors.hpp"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+const char* const magic = "rccm-checkpoint-1";
+
+/// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
+class RecordWriter {
+ public:
+  explicit RecordWriter(std::ostream& out) : out_(out) {}
+  void number(const char* name, double v) { out_ << name << ' ' << hex(v) << '\n'; }
+  void vector(const char* name, const Eigen::VectorXd& v) {
+    out_ << name << ' ' << v.size();
+    for (double x : v) out_ << ' ' << hex(x);
+    out_ << '\n';
+  }
+  void text(const char* name, const std::string& s) { out_ << name << ' ' << s << '\n'; }
+
+ private:
+  static std::string hex(double v) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%a", v);
+    return buf;
+  }
+  std::ostream& out_;
+};
+
+/// Reads the records back in the order they were written; a wrong name or number is an
+/// InputError "file:line: what was expected".
+class RecordReader {
+ public:
+  RecordReader(std::istream& in, std::string path) : in_(in), path_(std::move(path)) {}
+
+  double number(const char* name) {
+    std::istringstream line = next(name);
+    return parse(line, name);
+  }
+  int integer(const char* name) { return static_cast<int>(number(name)); }
+  Eigen::VectorXd vector(const char* name) {
+    std::istringstream line = next(name);
+    const double n = parse(line, name);
+    if (!(n >= 0 && n < 1e9)) fail(std::string("a length for '") + name + "'");
+    Eigen::VectorXd v(static_cast<Eigen::Index>(n));
+    for (double& x : v) x = parse(line, name);
+    return v;
+  }
+  std::string text(const char* name) {
+    std::istringstream line = next(name);
+    std::string rest;
+    std::getline(line >> std::ws, rest);
+    return rest;
+  }
+  [[noreturn]] void fail(const std::string& expected) const {
+    throw InputError(path_ + ":" + std::to_string(line_) + ": expected " + expected +
+                     " (a damaged checkpoint; start the run afresh with --force)");
+  }
+
+ private:
+  std::istringstream next(const char* name) {
+    std::string line;
+    ++line_;
+    if (!std::getline(in_, line)) fail(std::string("'") + name + "', found the end of the file");
+    std::istringstream s(line);
+    std::string word;
+    if (!(s >> word) || word != name) fail(std::string("'") + name + "'");
+    return s;
+  }
+  double parse(std::istringstream& line, const char* name) {
+    std::string word;
+    if (!(line >> word)) fail(std::string("more numbers for '") + name + "'");
+    char* end = nullptr;
+    errno = 0;
+    const double v = std::strtod(word.c_str(), &end);  // reads hex floats exactly
+    if (*end != '\0' || errno == ERANGE) fail(std::string("a number for '") + name + "', found '" + word + "'");
+    return v;
+  }
+  std::istream& in_;
+  std::string path_;
+  int line_ = 0;
+};
+
+Eigen::VectorXd status_vector(const std::vector<Status>& status) {
+  Eigen::VectorXd v(static_cast<Eigen::Index>(status.size()));
+  for (std::size_t i = 0; i < status.size(); ++i) v[static_cast<Eigen::Index>(i)] = static_cast<int>(status[i]);
+  return v;
+}
+
+}  // namespace
+
+std::string checkpoint_path(const std::string& directory) { return directory + "/checkpoint.txt"; }
+
+void write_checkpoint(const std::string& directory, const Checkpoint& c) {
+  AtomicFile file(checkpoint_path(directory));
+  RecordWriter w(file.stream());
+  const RunResult& p = c.progress;
+  w.text(magic, "");
+  w.text("settings", c.settings);
+  w.number("step", c.step);
+  w.number("last_step", c.last_step);
+  w.number("t", c.state.t);
+  w.vector("beta", c.state.beta);
+  w.vector("Rbar", c.state.Rbar);
+  w.vector("u", c.state.u);
+  w.vector("y", c.state.y);
+  w.vector("status", status_vector(c.state.status));
+  const EnergyTerms& e = c.energy;
+  w.vector("energy", Eigen::Vector<double, 6>(e.external_work, e.strain_energy, e.free_energy_change,
+                                              e.damage_dissipation, e.friction_dissipation, e.normal_contact_work));
+  w.vector("peak_force", Eigen::Map<const Eigen::VectorXd>(p.peak_force.data(), Eigen::Index(p.peak_force.size())));
+  w.vector("peak_time", Eigen::Map<const Eigen::VectorXd>(p.peak_time.data(), Eigen::Index(p.peak_time.size())));
+  w.vector("solves", Eigen::Vector4d(double(p.solves.contact_solves), double(p.solves.sweeps), p.solves.max_sweeps,
+                                     p.solves.seconds));
+  const IntegratorStats& I = p.integrator;
+  w.vector("integrator", Eigen::Vector4d(double(I.steps), double(I.rejected), double(I.rhs_evaluations),
+                                         double(I.newton_iterations)));
+  w.number("step_records", double(p.steps.size()));
+  for (const StepRecord& s : p.steps)
+    w.vector("record", (Eigen::VectorXd(7) << s.step, s.t, s.dt, double(s.contact_solves), s.sweeps_mean,
+                        s.sweeps_max, s.cpu_seconds).finished());
+  w.number("snapshots", double(p.snapshots.size()));
+  for (const Snapshot& s : p.snapshots) {
+    w.number("snapshot_t", s.t);
+    w.number("debonded_length", s.debonded_length);
+    w.vector("snapshot_beta", s.beta);
+    w.vector("snapshot_Rbar", s.Rbar);
+    w.vector("snapshot_u", s.u);
+  }
+  w.vector("diagnostics", Eigen::Map<const Eigen::VectorXd>(c.diagnostics.data(), Eigen::Index(c.diagnostics.size())));
+  w.vector("excursion", Eigen::Vector3d(c.excursion.size, c.excursion.t, c.excursion.node));
+  w.text("end", "");
+  file.commit();
+}
+
+Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
+  const std::string path = checkpoint_path(directory);
+  std::ifstream in(path);
+  if (!in)
+    throw InputError(path + ": no checkpoint to restart from (a run writes one every output.checkpoint_steps "
+                            "steps and when it stops)");
+  RecordReader r(in, path);
+  Checkpoint c;
+  r.text(magic);
+  c.settings = r.text("settings");
+  if (c.settings != cfg.settings)
+    throw InputError(path + ": written by a run of other settings than " + cfg.file +
+                     " with these --set options; restart with the same config and options, or run afresh with --force");
+  c.step = r.integer("step");
+  c.last_step = r.number("last_step");
+  c.state.t = r.number("t");
+  c.state.beta = r.vector("beta");
+  c.state.Rbar = r.vector("Rbar");
+  c.state.u = r.vector("u");
+  c.state.y = r.vector("y");
+  for (double s : r.vector("status")) {
+    if (s != 0 && s != 1 && s != 2) r.fail("a status 0, 1 or 2");
+    c.state.status.push_back(static_cast<Status>(int(s)));
+  }
+  const long m = c.state.beta.size();
+  if (c.state.Rbar.size() != 2 * m || c.state.u.size() != 2 * m || c.state.y.size() != 2 * m ||
+      long(c.state.status.size()) != m)
+    r.fail("vectors of one size per contact node");
+  const Eigen::VectorXd e = r.vector("energy");
+  if (e.size() != 6) r.fail("6 energy terms");
+  c.energy = {e[0], e[1], e[2], e[3], e[4], e[5]};
+  RunResult& p = c.progress;
+  const Eigen::VectorXd peak_force = r.vector("peak_force"), peak_time = r.vector("peak_time");
+  p.peak_force.assign(peak_force.begin(), peak_force.end());
+  p.peak_time.assign(peak_time.begin(), peak_time.end());
+  const Eigen::VectorXd solves = r.vector("solves"), integrator = r.vector("integrator");
+  if (solves.size() != 4 || integrator.size() != 4) r.fail("4 solve and 4 integrator counts");
+  p.solves = {long(solves[0]), long(solves[1]), int(solves[2]), solves[3]};
+  p.integrator = {long(integrator[0]), long(integrator[1]), long(integrator[2]), long(integrator[3])};
+  for (int k = r.integer("step_records"); k > 0; --k) {
+    const Eigen::VectorXd s = r.vector("record");
+    if (s.size() != 7) r.fail("7 numbers per step record");
+    p.steps.push_back({int(s[0]), s[1], s[2], long(s[3]), s[4], int(s[5]), s[6]});
+  }
+  for (int k = r.integer("snapshots"); k > 0; --k) {
+    Snapshot s;
+    s.t = r.number("snapshot_t");
+    s.debonded_length = r.number("debonded_length");
+    s.beta = r.vector("snapshot_beta");
+    s.Rbar = r.vector("snapshot_Rbar");
+    s.u = r.vector("snapshot_u");
+    p.snapshots.push_back(std::move(s));
+  }
+  const Eigen::VectorXd diagnostics = r.vector("diagnostics");
+  c.diagnostics.assign(diagnostics.begin(), diagnostics.end());
+  const Eigen::VectorXd excursion = r.vector("excursion");
+  if (excursion.size() != 3) r.fail("3 numbers for 'excursion'");
+  c.excursion = {excursion[0], excursion[1], int(excursion[2])};
+  r.text("end");
+  return c;
+}
+
+}  // namespace rccm

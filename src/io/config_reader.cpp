@@ -1,0 +1,573 @@
+// Reads a libconfig file into the plain structs of base/config.hpp, with every range check,
+// one function per section. The only file of rccm that includes libconfig.
+#include "rccm/io/config_reader.hpp"
+
+#include "rccm/base/errors.hpp"
+#include "rccm/base/suggest.hpp"
+#include "rccm/fem/rectangle_mesh.hpp"
+
+#include <libconfig.h++>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <functional>
+#include <initializer_list>
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+using libconfig::Setting;
+
+std::string type_name(const Setting& s) {
+  switch (s.getType()) {
+    case Setting::TypeInt:
+    case Setting::TypeInt64: return "an integer";
+    case Setting::TypeFloat: return "a number";
+    case Setting::TypeString: return "a string";
+    case Setting::TypeBoolean: return "a boolean";
+    case Setting::TypeGroup: return "a group";
+    case Setting::TypeArray: return "an array";
+    case Setting::TypeList: return "a list";
+    default: return "nothing";
+  }
+}
+
+/// Turns libconfig settings into values, with "file:line: path: message" errors.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const Setting& s, const std::string& what) const {
+    std::ostringstream msg;
+    const std::string path = s.isRoot() ? std::string("(top level)") : s.getPath();
+    if (s.isRoot())
+      msg << file_ << ": " << path << ": " << what;
+    else if (s.getSourceLine() == 0)
+      msg << "--set " << path << ": " << what;
+    else
+      msg << (s.getSourceFile() ? s.getSourceFile() : file_) << ":" << s.getSourceLine()
+          << ": " << path << ": " << what;
+    throw InputError(msg.str());
+  }
+
+  /// Fails on `s` unless `name` is one of `known`, suggesting the nearest one.
+  void one_of(const Setting& s, const std::string& name, const std::vector<std::string>& known,
+              const std::string& what) const {
+    if (std::find(known.begin(), known.end(), name) == known.end()) fail(s, what + suggestion(name, known));
+  }
+
+  /// Rejects keys of a group that are not in `known`.
+  void only(const Setting& group, std::initializer_list<const char*> keys) const {
+    const std::vector<std::string> known(keys.begin(), keys.end());
+    for (int i = 0; i < group.getLength(); ++i) {
+      const Setting& child = group[i];
+      one_of(child, child.getName() ? child.getName() : "", known, "unknown setting");
+    }
+  }
+
+  const Setting& group(const Setting& parent, const char* name) const {
+    if (!parent.exists(name)) fail(parent, std::string("missing section '") + name + "'");
+    const Setting& s = parent[name];
+    if (!s.isGroup()) fail(s, "must be a group { ... } (got " + type_name(s) + ")");
+    return s;
+  }
+
+  const Setting* optional_group(const Setting& parent, const char* name) const {
+    if (!parent.exists(name)) return nullptr;
+    return &group(parent, name);
+  }
+
+  double number(const Setting& s) const {
+    if (!s.isNumber()) fail(s, "must be a number (got " + type_name(s) + ")");
+    const double v = s;
+    if (!std::isfinite(v)) fail(s, "must be finite");
+    return v;
+  }
+
+  double number(const Setting& g, const char* name) const {
+    if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
+    return number(g[name]);
+  }
+
+  double number(const Setting& g, const char* name, double fallback) const {
+    return g.exists(name) ? number(g[name]) : fallback;
+  }
+
+  int integer(const Setting& g, const char* name, int fallback, bool required = false) const {
+    if (!g.exists(name)) {
+      if (required) fail(g, std::string("missing setting '") + name + "'");
+      return fallback;
+    }
+    const Setting& s = g[name];
+    if (s.getType() != Setting::TypeInt && s.getType() != Setting::TypeInt64)
+      fail(s, "must be an integer (got " + type_name(s) + ")");
+    const long long v = s;
+    if (v < -2147483647LL || v > 2147483647LL) fail(s, "integer out of range");
+    return static_cast<int>(v);
+  }
+
+  std::string text(const Setting& g, const char* name, const std::string& fallback,
+                   bool required = false) const {
+    if (!g.exists(name)) {
+      if (required) fail(g, std::string("missing setting '") + name + "'");
+      return fallback;
+    }
+    const Setting& s = g[name];
+    if (s.getType() != Setting::TypeString) fail(s, "must be a string (got " + type_name(s) + ")");
+    return s.c_str();
+  }
+
+  bool boolean(const Setting& g, const char* name, bool fallback) const {
+    if (!g.exists(name)) return fallback;
+    const Setting& s = g[name];
+    if (s.getType() != Setting::TypeBoolean) fail(s, "must be true or false (got " + type_name(s) + ")");
+    return s;
+  }
+
+  std::vector<double> numbers(const Setting& s) const {
+    if (s.isNumber()) return {number(s)};
+    if (!s.isArray() && !s.isList()) fail(s, "must be a number or an array [ ... ] of numbers");
+    std::vector<double> out;
+    for (int i = 0; i < s.getLength(); ++i) out.push_back(number(s[i]));
+    return out;
+  }
+
+  template <std::size_t N>
+  std::array<double, N> fixed(const Setting& g, const char* name) const {
+    if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
+    const Setting& s = g[name];
+    const std::vector<double> v = numbers(s);
+    if (v.size() != N || s.isNumber())
+      fail(s, "must be an array of " + std::to_string(N) + " numbers");
+    std::array<double, N> out{};
+    std::copy(v.begin(), v.end(), out.begin());
+    return out;
+  }
+
+  /// A string that must be one of `choices`; returns its index.
+  int choice(const Setting& g, const char* name, std::initializer_list<const char*> choices,
+             int fallback) const {
+    if (!g.exists(name)) return fallback;
+    const std::string v = text(g, name, "");
+    int k = 0;
+    std::string all;
+    for (const char* c : choices) {
+      if (v == c) return k;
+      all += std::string(k ? ", " : "") + "\"" + c + "\"";
+      ++k;
+    }
+    fail(g[name], "must be one of " + all + " (got \"" + v + "\")");
+  }
+
+  void check(bool ok, const Setting& s, const std::string& rule, double got) const {
+    if (ok) return;
+    std::ostringstream m;
+    m << rule << " (got " << got << ")";
+    fail(s, m.str());
+  }
+
+ private:
+  std::string file_;
+};
+
+/// Copies a parsed value (scalar, array, list or group) into `dst`'s parent under `name`.
+void copy_value(const Setting& src, Setting& parent, const std::string& name) {
+  if (parent.exists(name)) parent.remove(name);
+  const bool in_list = parent.isList() || parent.isArray();
+  Setting& dst = in_list ? parent.add(src.getType()) : parent.add(name, src.getType());
+  switch (src.getType()) {
+    case Setting::TypeInt: dst = static_cast<int>(src); break;
+    case Setting::TypeInt64: dst = static_cast<long long>(src); break;
+    case Setting::TypeFloat: dst = static_cast<double>(src); break;
+    case Setting::TypeString: dst = src.c_str(); break;
+    case Setting::TypeBoolean: dst = static_cast<bool>(src); break;
+    default:
+      for (int i = 0; i < src.getLength(); ++i)
+        copy_value(src[i], dst, src[i].getName() ? src[i].getName() : "");
+  }
+}
+
+/// libconfig's parse message, with the fix for its most common cause.
+std::string syntax_hint(const std::string& error) {
+  if (error.find("mismatched element type") != std::string::npos)
+    return error + ": an array holds one type, write 1.0 (not 1) beside other decimals";
+  return error;
+}
+
+/// Applies one "--set path=value"; the value is parsed by libconfig itself. A path part
+/// [k] selects the k-th element of a list (loads.[0].value).
+void apply_override(libconfig::Config& cfg, const std::string& item) {
+  const auto eq = item.find('=');
+  if (eq == std::string::npos || eq == 0)
+    throw InputError("--set " + item + ": expected path=value, e.g. interface.alpha=0.1");
+  const std::string path = item.substr(0, eq);
+  std::string text = item.substr(eq + 1);
+  // A bare word (solver.form=jacobi) is a string: the shell has eaten the quotes.
+  const bool bare_word = !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
+                         std::all_of(text.begin(), text.end(), [](unsigned char ch) {
+                           return std::isalnum(ch) || ch == '-' || ch == '_';
+                         }) &&
+                         text != "true" && text != "false";
+  if (bare_word) text = "\"" + text + "\"";
+  libconfig::Config value;
+  try {
+    value.readString("v = " + text + ";");
+  } catch (const libconfig::ParseException& e) {
+    throw InputError("--set " + path + ": cannot parse the value '" + item.substr(eq + 1) +
+                     "' (" + syntax_hint(e.getError()) + ")");
+  }
+  Setting* parent = &cfg.getRoot();
+  std::size_t start = 0;
+  for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.', start)) {
+    const std::string part = path.substr(start, dot - start);
+    if (part.size() > 2 && part.front() == '[' && part.back() == ']') {  // loads.[0].value: a list element
+      const std::string digits = part.substr(1, part.size() - 2);
+      const bool number = std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); });
+      if (!parent->isList()) throw InputError("--set " + path + ": '" + part + "' indexes a list; the setting before it is not one");
+      if (!number || std::stoul(digits) >= static_cast<unsigned long>(parent->getLength()))
+        throw InputError("--set " + path + ": '" + part + "': the list has " + std::to_string(parent->getLength()) +
+                         " element(s), numbered from 0");
+      parent = &(*parent)[static_cast<int>(std::stoul(digits))];
+    } else {
+      if (!parent->isGroup()) throw InputError("--set " + path + ": '" + part + "' must follow a group");
+      if (!parent->exists(part)) parent->add(part, Setting::TypeGroup);
+      parent = &(*parent)[part.c_str()];
+    }
+    if (!parent->isGroup() && !parent->isList())
+      throw InputError("--set " + path + ": '" + part + "' is not a group or a list");
+    start = dot + 1;
+  }
+  if (!parent->isGroup())
+    throw InputError("--set " + path + ": a list element is set by its index, e.g. loads.[0].value");
+  copy_value(value.lookup("v"), *parent, path.substr(start));
+}
+
+TimeFunction read_amplitude(const Reader& r, const Setting& load, double T) {
+  const bool has_value = load.exists("value"), has_table = load.exists("table");
+  if (has_value == has_table) r.fail(load, "give exactly one of 'value' (a ramp value*t/T) or 'table'");
+  if (has_value) return {{0.0, T}, {0.0, r.number(load, "value")}};
+  const Setting& table = load["table"];
+  if (!table.isList() && !table.isArray())
+    r.fail(table, "must be a list of (t, value) pairs, e.g. ( (0.0, 0.0), (10.0, 0.3) )");
+  TimeFunction f;
+  for (int i = 0; i < table.getLength(); ++i) {
+    const std::vector<double> p = r.numbers(table[i]);
+    if (p.size() != 2) r.fail(table[i], "each entry must be a pair (t, value)");
+    if (!f.t.empty() && p[0] <= f.t.back()) r.fail(table[i], "times must increase");
+    f.t.push_back(p[0]);
+    f.v.push_back(p[1]);
+  }
+  if (f.t.empty()) r.fail(table, "must have at least one (t, value) pair");
+  return f;
+}
+
+MeshParams read_mesh(const Reader& r, const Setting& root) {
+  const Setting& m = r.group(root, "mesh");
+  r.only(m, {"origin", "size", "nx", "ny", "element", "rotation", "node_sets"});
+  MeshParams p;
+  if (m.exists("origin")) p.origin = r.fixed<2>(m, "origin");
+  p.size = r.fixed<2>(m, "size");
+  for (int k = 0; k < 2; ++k) r.check(p.size[k] > 0, m["size"], "lengths must be > 0", p.size[k]);
+  p.nx = r.integer(m, "nx", 0, true);
+  p.ny = r.integer(m, "ny", 0, true);
+  r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
+  r.check(p.ny >= 1, m["ny"], "must be >= 1", p.ny);
+  p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
+  p.rotation = r.number(m, "rotation", 0.0);
+  if (m.exists("node_sets")) {
+    const Setting& sets = m["node_sets"];
+    if (!sets.isList()) r.fail(sets, "must be a list ( { name = ...; box = [...]; }, ... )");
+    for (int i = 0; i < sets.getLength(); ++i) {
+      const Setting& s = sets[i];
+      if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
+      r.only(s, {"name", "box"});
+      NodeSetDef d{r.text(s, "name", "", true), r.fixed<4>(s, "box")};
+      if (d.box[0] > d.box[1] || d.box[2] > d.box[3]) r.fail(s["box"], "needs xmin <= xmax and ymin <= ymax");
+      p.node_sets.push_back(d);
+    }
+  }
+  return p;
+}
+
+MaterialParams read_material(const Reader& r, const Setting& root) {
+  const Setting& mat = r.group(root, "material");
+  r.only(mat, {"E", "nu", "hypothesis"});
+  MaterialParams p;
+  p.E = r.number(mat, "E");
+  r.check(p.E > 0, mat["E"], "must be > 0", p.E);
+  p.nu = r.number(mat, "nu");
+  r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
+  p.hypothesis = static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress"}, 0));
+  return p;
+}
+
+InterfaceParams read_interface(const Reader& r, const Setting& in) {
+  r.only(in, {"boundary", "normal", "Cn", "Ct", "w", "alpha", "mu", "beta0", "g0"});
+  InterfaceParams p;
+  p.path = in.getPath();
+  p.boundary = r.text(in, "boundary", "", true);
+  if (in.exists("normal")) {
+    p.normal = r.fixed<2>(in, "normal");
+    const double len = std::hypot(p.normal[0], p.normal[1]);
+    r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
+    p.normal = {p.normal[0] / len, p.normal[1] / len};
+  }
+  p.Cn = r.number(in, "Cn");
+  r.check(p.Cn > 0, in["Cn"], "must be > 0", p.Cn);
+  p.Ct = r.number(in, "Ct");
+  r.check(p.Ct > 0, in["Ct"], "must be > 0", p.Ct);
+  p.w = r.number(in, "w");
+  r.check(p.w >= 0, in["w"], "must be >= 0", p.w);
+  p.alpha = r.number(in, "alpha", p.alpha);
+  if (in.exists("alpha")) r.check(p.alpha >= 0, in["alpha"], "must be >= 0", p.alpha);
+  p.mu = r.number(in, "mu");
+  r.check(p.mu >= 0, in["mu"], "must be >= 0", p.mu);
+  if (in.exists("beta0")) {
+    p.beta0 = r.numbers(in["beta0"]);
+    if (p.beta0.empty()) r.fail(in["beta0"], "must not be empty");
+    for (double b : p.beta0) r.check(b >= 0 && b <= 1, in["beta0"], "must be in [0, 1]", b);
+  }
+  if (in.exists("g0")) {
+    p.g0 = r.numbers(in["g0"]);
+    if (p.g0.empty()) r.fail(in["g0"], "must not be empty");
+    for (double g : p.g0) r.check(g >= 0, in["g0"], "must be >= 0", g);
+  }
+  return p;
+}
+
+TimeParams read_time(const Reader& r, const Setting& root) {
+  const Setting& t = r.group(root, "time");
+  r.only(t, {"T", "steps"});
+  TimeParams p;
+  p.T = r.number(t, "T");
+  r.check(p.T > 0, t["T"], "must be > 0", p.T);
+  p.steps = r.integer(t, "steps", p.steps);
+  if (t.exists("steps")) r.check(p.steps >= 1, t["steps"], "must be >= 1", p.steps);
+  return p;
+}
+
+std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double T) {
+  if (!root.exists("loads")) r.fail(root, "missing section 'loads'");
+  const Setting& loads = root["loads"];
+  if (!loads.isList()) r.fail(loads, "must be a list ( { node_set = ...; type = ...; ... }, ... )");
+  if (loads.getLength() == 0) r.fail(loads, "must hold at least one load (with none, nothing moves)");
+  std::vector<LoadParams> out;
+  for (int i = 0; i < loads.getLength(); ++i) {
+    const Setting& l = loads[i];
+    if (!l.isGroup()) r.fail(l, "must be a group { node_set = ...; type = ...; component = ...; value = ...; }");
+    r.only(l, {"node_set", "type", "component", "value", "table"});
+    LoadParams p;
+    p.path = l.getPath();
+    p.node_set = r.text(l, "node_set", "", true);
+    if (!l.exists("type")) r.fail(l, "missing setting 'type'");
+    p.kind = static_cast<LoadKind>(r.choice(l, "type", {"displacement", "force", "traction"}, 0));
+    if (!l.exists("component")) r.fail(l, "missing setting 'component'");
+    p.component = r.choice(l, "component", {"x", "y"}, 0);
+    p.amplitude = read_amplitude(r, l, T);
+    out.push_back(p);
+  }
+  return out;
+}
+
+SolverParams read_solver(const Reader& r, const Setting& root) {
+  SolverParams S;
+  const Setting* s = r.optional_group(root, "solver");
+  if (!s) return S;
+  r.only(*s, {"tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation", "active_set",
+              "active_set_max_nodes"});
+  S.tolerance = r.number(*s, "tolerance", S.tolerance);
+  if (s->exists("tolerance")) r.check(S.tolerance > 0 && S.tolerance < 1, (*s)["tolerance"], "must be in (0, 1)", S.tolerance);
+  S.max_iterations = r.integer(*s, "max_iterations", S.max_iterations);
+  if (s->exists("max_iterations")) r.check(S.max_iterations >= 1, (*s)["max_iterations"], "must be >= 1", S.max_iterations);
+  S.local_iterations = r.integer(*s, "local_iterations", S.local_iterations);
+  if (s->exists("local_iterations"))
+    r.check(S.local_iterations >= 1, (*s)["local_iterations"], "must be >= 1", S.local_iterations);
+  S.form = static_cast<SweepForm>(r.choice(*s, "form", {"gauss-seidel", "jacobi"}, 0));
+  S.rho = static_cast<RhoRule>(r.choice(*s, "rho", {"eigen", "paper"}, 0));
+  S.relaxation = r.number(*s, "relaxation", S.relaxation);
+  if (s->exists("relaxation"))
+    r.check(S.relaxation > 0 && S.relaxation <= 1, (*s)["relaxation"], "must be in (0, 1]", S.relaxation);
+  S.active_set = r.boolean(*s, "active_set", S.active_set);
+  S.active_set_max_nodes = r.integer(*s, "active_set_max_nodes", S.active_set_max_nodes);
+  if (s->exists("active_set_max_nodes"))
+    r.check(S.active_set_max_nodes >= 0, (*s)["active_set_max_nodes"], "must be >= 0", S.active_set_max_nodes);
+  return S;
+}
+
+IntegratorParams read_integrator(const Reader& r, const Setting& root) {
+  IntegratorParams A;
+  const Setting* g = r.optional_group(root, "integrator");
+  if (!g) return A;
+  r.only(*g, {"method", "scheme", "table", "rtol", "atol", "max_step", "initial_step", "fixed_step", "min_step",
+              "max_steps", "fixed_point_tolerance", "fixed_point_iterations"});
+  A.method = static_cast<Method>(r.choice(*g, "method", {"arkode", "euler", "rate-independent", "contact-only"}, 0));
+  A.scheme = static_cast<ArkodeScheme>(r.choice(*g, "scheme", {"dirk", "erk"}, 0));
+  A.table = r.text(*g, "table", "");
+  // A number that must be > 0 (strict) or >= 0.
+  const auto sign_checked = [&](const char* key, double& v, bool strict) {
+    v = r.number(*g, key, v);
+    if (g->exists(key)) r.check(strict ? v > 0 : v >= 0, (*g)[key], strict ? "must be > 0" : "must be >= 0", v);
+  };
+  sign_checked("rtol", A.rtol, true);
+  sign_checked("atol", A.atol, true);
+  sign_checked("max_step", A.max_step, false);
+  sign_checked("initial_step", A.initial_step, false);
+  sign_checked("fixed_step", A.fixed_step, false);
+  sign_checked("min_step", A.min_step, false);
+  A.max_steps = r.integer(*g, "max_steps", A.max_steps);
+  if (g->exists("max_steps")) r.check(A.max_steps >= 1, (*g)["max_steps"], "must be >= 1", A.max_steps);
+  sign_checked("fixed_point_tolerance", A.fixed_point_tolerance, true);
+  A.fixed_point_iterations = r.integer(*g, "fixed_point_iterations", A.fixed_point_iterations);
+  if (g->exists("fixed_point_iterations"))
+    r.check(A.fixed_point_iterations >= 1, (*g)["fixed_point_iterations"], "must be >= 1", A.fixed_point_iterations);
+  return A;
+}
+
+OutputParams read_output(const Reader& r, const Setting& root, double T) {
+  OutputParams O;
+  const Setting* o = r.optional_group(root, "output");
+  if (!o) return O;
+  r.only(*o, {"directory", "times", "watch", "checkpoint_steps"});
+  O.checkpoint_steps = r.integer(*o, "checkpoint_steps", O.checkpoint_steps);
+  if (o->exists("checkpoint_steps"))
+    r.check(O.checkpoint_steps >= 0, (*o)["checkpoint_steps"], "must be >= 0 (0: a checkpoint only when the run stops)",
+            O.checkpoint_steps);
+  O.directory = r.text(*o, "directory", O.directory);
+  if (O.directory.empty()) r.fail((*o)["directory"], "must not be empty");
+  if (o->exists("times")) {
+    O.times = r.numbers((*o)["times"]);
+    for (double tt : O.times) r.check(tt >= 0 && tt <= T, (*o)["times"], "must be in [0, time.T]", tt);
+    std::sort(O.times.begin(), O.times.end());
+  }
+  if (o->exists("watch")) {
+    const Setting& ws = (*o)["watch"];
+    if (!ws.isList()) r.fail(ws, "must be a list ( { name = \"B\"; point = [x, y]; }, ... )");
+    for (int i = 0; i < ws.getLength(); ++i) {
+      if (!ws[i].isGroup()) r.fail(ws[i], "must be a group { name = ...; point = [x, y]; }");
+      r.only(ws[i], {"name", "point"});
+      O.watch.push_back({r.text(ws[i], "name", "", true), r.fixed<2>(ws[i], "point")});
+    }
+  }
+  return O;
+}
+
+/// Rules across sections.
+void check_consistency(const Reader& r, const Setting& root, const Config& c) {
+  const bool viscous = c.integrator.method == Method::Arkode || c.integrator.method == Method::Euler;
+  for (const InterfaceParams& p : c.interfaces) {
+    if (viscous && !(p.alpha > 0)) {
+      const Setting& in = root.lookup(p.path);
+      r.fail(in.exists("alpha") ? in["alpha"] : in,
+             std::string("must be > 0 for integrator.method = \"") + method_name(c.integrator.method) + "\" (got " +
+                 std::to_string(p.alpha) + "); alpha = 0 is method \"rate-independent\"");
+    }
+  }
+}
+
+Config read(const Reader& r, const Setting& root, const std::string& path) {
+  Config c;
+  c.file = path;
+  r.only(root, {"mesh", "material", "interface", "loads", "time", "solver", "integrator", "output"});
+  c.mesh = read_mesh(r, root);
+  c.material = read_material(r, root);
+  c.interfaces.push_back(read_interface(r, r.group(root, "interface")));
+  c.time = read_time(r, root);
+  c.loads = read_loads(r, root, c.time.T);
+  c.solver = read_solver(r, root);
+  c.integrator = read_integrator(r, root);
+  c.output = read_output(r, root, c.time.T);
+  check_consistency(r, root, c);
+  return c;
+}
+
+/// The line of every setting, by path, for messages after reading (Config::where).
+void record_lines(const Setting& s, std::map<std::string, int>& lines) {
+  if (!s.isRoot()) lines[s.getPath()] = static_cast<int>(s.getSourceLine());
+  if (s.isAggregate())
+    for (int i = 0; i < s.getLength(); ++i) record_lines(s[i], lines);
+}
+
+}  // namespace
+
+
+namespace {
+
+/// FNV-1a of "path=value" of every scalar setting but those that do not shape the results.
+std::string settings_fingerprint(const Setting& root) {
+  std::uint64_t h = 14695981039346656037ull;
+  const auto mix = [&h](const std::string& text) {
+    for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
+  };
+  const std::function<void(const Setting&)> visit = [&](const Setting& s) {
+    if (s.isAggregate()) {
+      for (int i = 0; i < s.getLength(); ++i) visit(s[i]);
+      return;
+    }
+    const std::string path = s.getPath();
+    if (path == "output.directory" || path == "output.checkpoint_steps") return;
+    char value[64];
+    switch (s.getType()) {
+      case Setting::TypeFloat: std::snprintf(value, sizeof value, "%a", double(s)); break;
+      case Setting::TypeString: mix(path + "=" + s.c_str() + ";"); return;
+      case Setting::TypeBoolean: std::snprintf(value, sizeof value, "%d", bool(s) ? 1 : 0); break;
+      default: std::snprintf(value, sizeof value, "%lld", static_cast<long long>(s)); break;
+    }
+    mix(path + "=" + value + ";");
+  };
+  visit(root);
+  char out[20];
+  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
+  return out;
+}
+
+/// Overrides, then the checked read, of a parsed libconfig tree.
+Config finish(libconfig::Config& cfg, const std::string& path, const std::vector<std::string>& overrides) {
+  for (const std::string& o : overrides) apply_override(cfg, o);
+  Reader reader(path);
+  try {
+    Config c = read(reader, cfg.getRoot(), path);
+    record_lines(cfg.getRoot(), c.lines);
+    c.settings = settings_fingerprint(cfg.getRoot());
+    return c;
+  } catch (const libconfig::SettingException& e) {
+    throw InputError(path + ": " + e.getPath() + ": " + e.what());
+  }
+}
+
+InputError syntax_error(const libconfig::ParseException& e, const std::string& path) {
+  return InputError(std::string(e.getFile() ? e.getFile() : path.c_str()) + ":" + std::to_string(e.getLine()) +
+                    ": syntax error: " + syntax_hint(e.getError()));
+}
+
+}  // namespace
+
+Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
+  libconfig::Config cfg;
+  cfg.setAutoConvert(true);
+  try {
+    cfg.readFile(path.c_str());
+  } catch (const libconfig::FileIOException&) {
+    throw InputError(path + ": cannot read the file (does it exist?)");
+  } catch (const libconfig::ParseException& e) {
+    throw syntax_error(e, path);
+  }
+  return finish(cfg, path, overrides);
+}
+
+Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  libconfig::Config cfg;
+  cfg.setAutoConvert(true);
+  try {
+    cfg.readString(text);
+  } catch (const libconfig::ParseException& e) {
+    throw syntax_error(e, name);
+  }
+  return finish(cfg, name, overrides);
+}
+
+}  // namespace rccm

@@ -1,0 +1,71 @@
+#include "rccm/io/output_directory.hpp"
+
+#include "rccm/base/errors.hpp"
+
+#include <fcntl.h>
+#include <stdlib.h>
+#include <sys/file.h>
+#include <unistd.h>
+
+#include <filesystem>
+
+namespace fs = std::filesystem;
+
+namespace rccm {
+
+namespace {
+// The files that mark a directory as holding a run's results.
+const char* const result_marks[] = {"history.csv", "report.txt", "results.pvd"};
+
+/// Whether a file can be created in `dir` (a probe created and removed at once: permissions,
+/// a read-only file system and /proc all answer, also for root).
+bool writable(const fs::path& dir) {
+  std::string probe = (dir / ".rccm-probe-XXXXXX").string();
+  const int fd = ::mkstemp(probe.data());
+  if (fd < 0) return false;
+  ::close(fd);
+  ::unlink(probe.c_str());
+  return true;
+}
+}  // namespace
+
+void check_output_directory(const Config& cfg, bool force) {
+  const fs::path dir = cfg.output.directory;
+  const std::string where = cfg.where("output.directory");
+  std::error_code ec;
+  if (fs::exists(dir, ec)) {
+    if (!fs::is_directory(dir, ec)) throw InputError(where + ": '" + dir.string() + "' is a file, not a directory");
+    if (!writable(dir)) throw InputError(where + ": cannot write into '" + dir.string() + "'");
+    for (const char* mark : result_marks)
+      if (!force && fs::exists(dir / mark, ec))
+        throw InputError(where + ": '" + dir.string() + "' already holds the results of a run (" + mark +
+                         "); give --force to overwrite them, or another directory (--set output.directory=...)");
+    return;
+  }
+  // It will be created: its nearest existing ancestor must be a writable directory.
+  fs::path parent = fs::absolute(dir, ec).parent_path();
+  while (!parent.empty() && !fs::exists(parent, ec) && parent != parent.root_path()) parent = parent.parent_path();
+  if (!fs::is_directory(parent, ec) || !writable(parent))
+    throw InputError(where + ": cannot create '" + dir.string() + "' ('" + parent.string() + "' is not a writable directory)");
+}
+
+OutputDirectory::OutputDirectory(const Config& cfg) : path_(cfg.output.directory) {
+  const std::string where = cfg.where("output.directory");
+  std::error_code ec;
+  fs::create_directories(path_, ec);
+  if (ec || !fs::is_directory(path_))
+    throw InputError(where + ": cannot create '" + path_ + "' (" + ec.message() + ")");
+  const std::string lock = path_ + "/.lock";
+  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (lock_fd_ < 0) throw InputError(where + ": cannot write into '" + path_ + "'");
+  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(lock_fd_);
+    throw InputError(where + ": another rccm run is writing into '" + path_ + "' now; wait for it, or choose another directory");
+  }
+}
+
+OutputDirectory::~OutputDirectory() {
+  ::close(lock_fd_);  // releases the lock; the empty .lock file stays (removing it would race)
+}
+
+}  // namespace rccm

@@ -1,0 +1,150 @@
+#include "rccm/io/recorder.hpp"
+
+#include "rccm/io/run_report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <ostream>
+
+namespace rccm {
+
+namespace {
+
+void log_step(std::ostream& out, const AcceptedStep& a) {
+  int count[3] = {0, 0, 0};
+  for (Status x : a.state.status) ++count[static_cast<int>(x)];
+  char line[200];
+  std::snprintf(line, sizeof line, "%6d %10.5f %9.2e %5ld %5.1f %4d %9.2e %11.4e %5d %5d %5d\n", a.step, a.t, a.dt,
+                a.counts.contact_solves, a.counts.sweeps_per_solve(), a.counts.max_sweeps, a.solution.residual,
+                a.state.beta.minCoeff(), count[1], count[2], count[0]);
+  out << line;
+}
+
+void progress_line(const AcceptedStep& a, double T) {
+  std::fprintf(stderr, "\r  t = %9.5f s (%5.1f %%)  dt = %8.2e  min beta = %10.4e  sweeps/solve = %4.1f   ", a.t,
+               100 * a.t / T, a.dt, a.state.beta.minCoeff(), a.counts.sweeps_per_solve());
+}
+
+}  // namespace
+
+Recorder::Recorder(const Config& cfg, RunOptions options)
+    : cfg_(cfg), options_(std::move(options)), start_(std::chrono::steady_clock::now()) {
+  if (options_.restart) resume_ = std::make_unique<Checkpoint>(read_checkpoint(cfg.output.directory, cfg));
+  else if (options_.write_files) check_output_directory(cfg, options_.force);
+}
+
+double Recorder::seconds() const {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+}
+
+void Recorder::open(const Model& model) {
+  model_ = &model;
+  result_.setup_seconds = seconds();
+  result_.watched = model.watched();
+  result_.nodes = model.mesh().num_nodes();
+  result_.cells = static_cast<int>(model.mesh().cells.size());
+  result_.dofs = model.mesh().num_dofs();
+  result_.contact_nodes = model.contact_nodes();
+  if (options_.step_log)
+    *options_.step_log << "# " << cfg_.file << ": " << result_.nodes << " nodes, " << result_.cells << " cells, "
+                       << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
+                       << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
+  if (!options_.write_files) return;
+  directory_ = std::make_unique<OutputDirectory>(cfg_);
+  ResumePoint point;
+  if (resume_) {
+    point.t = resume_->state.t;
+    for (const Snapshot& s : resume_->progress.snapshots) point.output_times.push_back(s.t);
+  }
+  writer_ = std::make_unique<ResultWriter>(model, cfg_, directory_->path(), resume_ ? &point : nullptr);
+}
+
+void Recorder::start(BetaOde& ode) {
+  ode_ = &ode;
+  if (!resume_) {
+    Eigen::VectorXd beta0 = model_->initial_beta();
+    ode.accept(0.0, beta0);  // step 0: recorded by step()
+    return;
+  }
+  const InterfaceState initial = InterfaceState::initial(*model_);
+  energy_ = std::make_unique<EnergyBalance>(*model_, initial, body_state(*model_, initial));
+  ode.resume(resume_->state, resume_->step, resume_->progress.solves, resume_->excursion);
+  body_ = body_state(*model_, resume_->state);
+  energy_->resume(resume_->state, body_, resume_->energy);
+  const RunResult& p = resume_->progress;
+  result_.snapshots = p.snapshots;
+  result_.steps = p.steps;
+  result_.peak_force = p.peak_force;
+  result_.peak_time = p.peak_time;
+  earlier_ = p.integrator;
+}
+
+double Recorder::initial_step() const { return resume_ ? resume_->last_step : 0.0; }
+
+void Recorder::attach(BetaIntegrator& integrator) {
+  integrator_ = &integrator;
+  if (resume_) integrator.restore(resume_->diagnostics);
+}
+
+void Recorder::step(const AcceptedStep& a) {
+  body_ = body_state(*model_, a.state);
+  if (!energy_) energy_ = std::make_unique<EnergyBalance>(*model_, a.state, body_);
+  else energy_->add(a.state, body_);
+  result_.peak_force.resize(body_.force.size(), 0.0);
+  result_.peak_time.resize(body_.force.size(), 0.0);
+  for (std::size_t k = 0; k < body_.force.size(); ++k)
+    if (std::abs(body_.force[k]) > std::abs(result_.peak_force[k]))
+      result_.peak_force[k] = body_.force[k], result_.peak_time[k] = a.t;
+  result_.steps.push_back({a.step, a.t, a.dt, a.counts.contact_solves, a.counts.sweeps_per_solve(),
+                           a.counts.max_sweeps, a.cpu_seconds});
+  if (writer_) writer_->step(a, body_, energy_->terms());
+  if (options_.step_log) log_step(*options_.step_log, a);
+  if (options_.progress) progress_line(a, cfg_.time.T);
+  if (writer_ && integrator_ && cfg_.output.checkpoint_steps > 0 && a.step % cfg_.output.checkpoint_steps == 0)
+    save_checkpoint();
+  if (options_.observer) options_.observer(a);
+}
+
+void Recorder::save_checkpoint() {
+  Checkpoint c{cfg_.settings,           ode_->steps(),              integrator_->last_step(), ode_->committed(),
+               energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}};
+  c.progress.snapshots = result_.snapshots;
+  c.progress.steps = result_.steps;
+  c.progress.peak_force = result_.peak_force;
+  c.progress.peak_time = result_.peak_time;
+  c.progress.solves = ode_->totals();
+  c.progress.integrator = earlier_ + integrator_->stats();
+  c.progress.integrator.steps = ode_->steps();  // also inside a step, before the scheme counts it
+  write_checkpoint(writer_->directory(), c);
+}
+
+bool Recorder::has_snapshot(double t_out) const {
+  return !result_.snapshots.empty() && result_.snapshots.back().t >= t_out - 1e-12 * cfg_.time.T;
+}
+
+void Recorder::snapshot() {
+  const InterfaceState& s = ode_->committed();
+  double debonded = 0;
+  for (int i = 0; i < model_->contact_nodes(); ++i)
+    if (s.beta[i] < 0.5) debonded += model_->interface().pairs[i].measure;
+  result_.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded});
+  if (writer_) writer_->output(s, body_);  // the last accepted step is the one at s.t
+}
+
+RunResult Recorder::finish(const std::string& stopped) {
+  // The restart point: the last accepted state, before a stopped run's extra snapshot of it.
+  if (writer_) save_checkpoint();
+  result_.stopped = stopped;
+  if (!stopped.empty() && (result_.snapshots.empty() || result_.snapshots.back().t < ode_->committed().t)) snapshot();
+  if (options_.progress) std::fputs("\n", stderr);
+  result_.integrator = earlier_ + integrator_->stats();
+  result_.solves = ode_->totals();
+  result_.energy = energy_->terms();
+  result_.warnings = integrator_->warnings();
+  for (const std::string& w : ode_->warnings()) result_.warnings.push_back(w);
+  result_.wall_seconds = seconds();
+  if (writer_) write_reports(writer_->directory(), cfg_, result_);
+  return result_;
+}
+
+}  // namespace rccm

@@ -1,0 +1,134 @@
+#include "rccm/io/run_report.hpp"
+
+#include "rccm/io/atomic_file.hpp"
+#include "rccm/base/errors.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+
+namespace rccm {
+
+namespace {
+
+/// The accepted steps nearest to the paper's table columns.
+std::vector<const StepRecord*> table_columns(const RunResult& r) {
+  std::vector<const StepRecord*> cols;
+  if (r.steps.size() < 2) return cols;
+  for (int want : {1, 10, 40, 60, 100, 150, 200}) {
+    const int last = static_cast<int>(r.steps.size()) - 1;
+    const StepRecord* s = &r.steps[std::min(want, last)];
+    if (cols.empty() || cols.back() != s) cols.push_back(s);
+  }
+  return cols;
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) out += (c == '"' || c == '\\') ? std::string("\\") + c : (c == '\n' ? std::string("\\n") : std::string(1, c));
+  return out + "\"";
+}
+
+}  // namespace
+
+void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r) {
+  out << "rccm run report: " << cfg.file << "\n"
+      << "mesh: " << r.nodes << " nodes, " << r.cells << " cells, " << r.dofs << " DOFs, " << r.contact_nodes
+      << " contact nodes\n"
+      << "integrator: " << method_name(cfg.integrator.method);
+  if (cfg.integrator.method == Method::Arkode)
+    out << " (" << (cfg.integrator.scheme == ArkodeScheme::Dirk ? "dirk" : "erk") << ", rtol " << cfg.integrator.rtol
+        << ", atol " << cfg.integrator.atol << ")";
+  for (const InterfaceParams& p : cfg.interfaces) out << "; " << p.path << ".alpha = " << p.alpha << " N s/mm";
+  out << "\n";
+  if (r.stopped.empty())
+    out << "status: complete (t = " << cfg.time.T << " s)\n\n";
+  else
+    out << "status: STOPPED before T = " << cfg.time.T << " s, at the last accepted step t = "
+        << (r.snapshots.empty() ? 0.0 : r.snapshots.back().t) << " s (its interface and mesh are written)\n  "
+        << r.stopped << "\n\n";
+
+  out << "Work per step (the paper's Table 1 layout)\n";
+  const auto cols = table_columns(r);
+  auto row = [&](const char* label, auto value) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%-30s", label);
+    out << buf;
+    for (const StepRecord* s : cols) out << value(*s);
+    out << "\n";
+  };
+  row("step", [](const StepRecord& s) { return fmt("%10.0f", s.step); });
+  row("t [s]", [](const StepRecord& s) { return fmt("%10.4f", s.t); });
+  row("contact solves (beta iter.)", [](const StepRecord& s) { return fmt("%10.0f", s.contact_solves); });
+  row("bipotential sweeps per solve", [](const StepRecord& s) { return fmt("%10.2f", s.sweeps_mean); });
+  row("CPU [s]", [](const StepRecord& s) { return fmt("%10.2e", s.cpu_seconds); });
+
+  const IntegratorStats& I = r.integrator;
+  out << "\nTotals\n"
+      << "  accepted steps          " << I.steps << " (" << I.rejected << " rejected)\n"
+      << "  RHS evaluations         " << I.rhs_evaluations << "\n"
+      << "  Newton / fixed-point it " << I.newton_iterations << "\n"
+      << "  contact solves          " << r.solves.contact_solves << "\n"
+      << "  bipotential sweeps      " << fmt("%.2f", double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves))
+      << " per solve, max " << r.solves.max_sweeps << "\n"
+      << "  wall time               " << fmt("%.3f", r.wall_seconds) << " s (setup " << fmt("%.4f", r.setup_seconds)
+      << " s)\n";
+
+  const EnergyTerms& e = r.energy;
+  out << "\nEnergy balance at T (docs/MODEL.md s3), N mm per mm of thickness\n"
+      << "  external work                  " << fmt("%.8e", e.external_work) << "\n"
+      << "  strain energy                  " << fmt("%.8e", e.strain_energy) << "\n"
+      << "  interface free energy change   " << fmt("%.8e", e.free_energy_change) << "\n"
+      << "  damage dissipation             " << fmt("%.8e", e.damage_dissipation) << "\n"
+      << "  friction dissipation           " << fmt("%.8e", e.friction_dissipation) << "\n"
+      << "  imbalance                      " << fmt("%.3e", e.imbalance()) << " (relative "
+      << fmt("%.3e", e.relative_error()) << ")\n"
+      << "  normal contact work (0 exact)  " << fmt("%.3e", e.normal_contact_work) << "\n";
+  if (e.relative_error() > 1e-2)
+    out << "  The imbalance is large: beta fell by a large amount within single steps (a time step too\n"
+           "  coarse for the debonding, or snap-through in the rate-independent limit); refine the\n"
+           "  steps or tighten integrator.rtol (VERIFICATION.md, 'Energy balance when beta snaps').\n";
+  for (const std::string& w : r.warnings) out << "\nwarning: " << w << "\n";
+}
+
+void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r) {
+  const EnergyTerms& e = r.energy;
+  const IntegratorStats& I = r.integrator;
+  out << "{\n  \"config\": " << json_string(cfg.file) << ",\n  \"integrator\": " << json_string(method_name(cfg.integrator.method))
+      << ",\n  \"alpha\": " << cfg.interfaces.front().alpha << ",\n  \"nodes\": " << r.nodes << ",\n  \"cells\": " << r.cells
+      << ",\n  \"dofs\": " << r.dofs << ",\n  \"contact_nodes\": " << r.contact_nodes << ",\n  \"steps\": " << I.steps
+      << ",\n  \"rejected_steps\": " << I.rejected << ",\n  \"rhs_evaluations\": " << I.rhs_evaluations
+      << ",\n  \"newton_iterations\": " << I.newton_iterations << ",\n  \"contact_solves\": " << r.solves.contact_solves
+      << ",\n  \"sweeps_per_solve\": " << double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves)
+      << ",\n  \"sweeps_max\": " << r.solves.max_sweeps << ",\n  \"wall_seconds\": " << r.wall_seconds
+      << ",\n  \"setup_seconds\": " << r.setup_seconds << ",\n  \"energy\": {\"external_work\": " << e.external_work
+      << ", \"strain_energy\": " << e.strain_energy << ", \"free_energy_change\": " << e.free_energy_change
+      << ", \"damage_dissipation\": " << e.damage_dissipation << ", \"friction_dissipation\": " << e.friction_dissipation
+      << ", \"normal_contact_work\": " << e.normal_contact_work << ", \"imbalance\": " << e.imbalance()
+      << ", \"relative_error\": " << e.relative_error() << "},\n  \"per_step\": [";
+  for (std::size_t k = 0; k < r.steps.size(); ++k) {
+    const StepRecord& s = r.steps[k];
+    out << (k ? ",\n    " : "\n    ") << "{\"step\": " << s.step << ", \"t\": " << s.t << ", \"dt\": " << s.dt
+        << ", \"contact_solves\": " << s.contact_solves << ", \"sweeps_mean\": " << s.sweeps_mean
+        << ", \"sweeps_max\": " << s.sweeps_max << ", \"cpu_seconds\": " << s.cpu_seconds << "}";
+  }
+  out << "\n  ],\n  \"stopped\": " << json_string(r.stopped) << ",\n  \"warnings\": [";
+  for (std::size_t k = 0; k < r.warnings.size(); ++k) out << (k ? ", " : "") << json_string(r.warnings[k]);
+  out << "]\n}\n";
+}
+
+void write_reports(const std::string& directory, const Config& cfg, const RunResult& r) {
+  AtomicFile txt(directory + "/report.txt"), json(directory + "/report.json");
+  write_report_text(txt.stream(), cfg, r);
+  write_report_json(json.stream(), cfg, r);
+  txt.commit();
+  json.commit();
+}
+
+}  // namespace rccm

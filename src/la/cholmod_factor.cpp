@@ -1,0 +1,80 @@
+#include "rccm/la/cholmod_factor.hpp"
+
+#include "rccm/base/errors.hpp"
+
+#include <Eigen/CholmodSupport>
+
+namespace rccm {
+
+struct CholmodFactor::Impl {
+  cholmod_common cm;
+  cholmod_factor* L = nullptr;
+  Impl() {
+    cholmod_start(&cm);
+    // No CHOLMOD warnings on stderr: a singular stiffness is reported by the caller (rcond)
+    // with what to change, not as "matrix not positive definite".
+    cm.print = 0;
+    cm.error_handler = nullptr;
+  }
+  ~Impl() {
+    cholmod_free_factor(&L, &cm);
+    cholmod_finish(&cm);
+  }
+};
+
+CholmodFactor::CholmodFactor(const Eigen::SparseMatrix<double>& A, const std::vector<int>& last)
+    : impl_(std::make_unique<Impl>()) {
+  cholmod_common& cm = impl_->cm;
+  cholmod_sparse a = Eigen::viewAsCholmod(A.selfadjointView<Eigen::Lower>());
+  const int n = static_cast<int>(A.rows()), c = static_cast<int>(last.size());
+  if (c == 0) {
+    impl_->L = cholmod_analyze(&a, &cm);  // CHOLMOD's own choice of ordering
+  } else {
+    // Constrained AMD: set 0 (the others) first, set 1 (`last`) after; no postordering,
+    // which could move the trailing indices.
+    std::vector<int> member(n, 0), perm(n);
+    for (int i : last) member[i] = 1;
+    RCCM_VERIFY(cholmod_camd(&a, nullptr, 0, member.data(), perm.data(), &cm), "cholmod_camd");
+    cm.nmethods = 1;
+    cm.method[0].ordering = CHOLMOD_GIVEN;
+    cm.postorder = 0;
+    impl_->L = cholmod_analyze_p(&a, perm.data(), nullptr, 0, &cm);
+    trailing_order_.assign(perm.end() - c, perm.end());
+    for (int i : trailing_order_) RCCM_VERIFY(member[i] == 1, "CAMD placed the constrained indices last");
+  }
+  RCCM_VERIFY(impl_->L != nullptr, "cholmod_analyze");
+  cholmod_factorize(&a, impl_->L, &cm);
+  ok_ = cm.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
+  if (!ok_) return;
+  rcond_ = cholmod_rcond(impl_->L, &cm);
+  // Column access for trailing_factor(): a simplicial, packed L L^T form (solves work the same).
+  if (c > 0) RCCM_VERIFY(cholmod_change_factor(CHOLMOD_REAL, 1, 0, 1, 1, impl_->L, &cm), "cholmod_change_factor");
+}
+
+CholmodFactor::~CholmodFactor() = default;
+
+Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& b) const {
+  Eigen::MatrixXd x(b.rows(), b.cols());
+  if (b.cols() == 0) return x;
+  Eigen::MatrixXd rhs = b;
+  cholmod_dense B = Eigen::viewAsCholmod(rhs);
+  cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->L, &B, &impl_->cm);
+  RCCM_VERIFY(X != nullptr, "cholmod_solve");
+  x = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(X->x), b.rows(), b.cols());
+  cholmod_free_dense(&X, &impl_->cm);
+  return x;
+}
+
+Eigen::MatrixXd CholmodFactor::trailing_factor() const {
+  const cholmod_factor& L = *impl_->L;
+  const int n = static_cast<int>(L.n), c = static_cast<int>(trailing_order_.size()), first = n - c;
+  const auto* p = static_cast<const int*>(L.p);
+  const auto* i = static_cast<const int*>(L.i);
+  const auto* x = static_cast<const double*>(L.x);
+  Eigen::MatrixXd Lcc = Eigen::MatrixXd::Zero(c, c);
+  for (int j = first; j < n; ++j)
+    for (int k = p[j]; k < p[j + 1]; ++k) Lcc(i[k] - first, j - first) = x[k];  // rows >= j >= first
+  return Lcc;
+}
+
+}  // namespace rccm

@@ -1,0 +1,70 @@
+// rccm sweep: the grid of cases, the rate-independent case, and a physical check of the
+// alpha study: more viscosity, higher peak peel force (MODEL.md s3, BENCHMARKS.md B1).
+#include "rccm/app/sweep.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+using namespace rccm;
+namespace fs = std::filesystem;
+
+namespace {
+const std::string b1 = std::string(RCCM_SOURCE_DIR) + "/config/b1.cfg";
+
+std::size_t lines(const fs::path& p) {
+  std::ifstream in(p);
+  std::size_t n = 0;
+  for (std::string l; std::getline(in, l);) ++n;
+  return n;
+}
+}  // namespace
+
+TEST_CASE("sweep settings: lists are axes, arrays and single values are fixed", "[sweep]") {
+  std::vector<SweepAxis> axes;
+  std::vector<std::string> fixed;
+  split_sweep_settings({"interface.alpha=0,0.1,1", "output.times=[1.0,2.0]", "interface.mu=0.3", "solver.form=jacobi"},
+                       axes, fixed);
+  REQUIRE(axes.size() == 1);
+  CHECK(axes[0].path == "interface.alpha");
+  CHECK(axes[0].values == std::vector<std::string>{"0", "0.1", "1"});
+  CHECK(fixed == std::vector<std::string>{"output.times=[1.0,2.0]", "interface.mu=0.3", "solver.form=jacobi"});
+}
+
+TEST_CASE("sweep cases: a grid of two axes, alpha = 0 is the rate-independent limit", "[sweep]") {
+  const std::vector<SweepAxis> axes{{"interface.alpha", {"0", "1"}}, {"interface.mu", {"0.1", "0.3"}}};
+  const std::vector<SweepCase> cases = make_sweep_cases(b1, {}, axes, "/tmp/rccm_sweep_grid");
+  REQUIRE(cases.size() == 4);
+  CHECK(cases[0].name == "alpha=0_mu=0.1");
+  CHECK(cases[3].name == "alpha=1_mu=0.3");
+  CHECK(cases[0].config.integrator.method == Method::RateIndependent);
+  CHECK(cases[3].config.integrator.method == Method::Arkode);
+  CHECK(cases[3].config.interfaces[0].mu == 0.3);
+  CHECK(cases[1].config.output.directory == "/tmp/rccm_sweep_grid/alpha=0_mu=0.3");
+}
+
+TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha", "[sweep]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {}, {{"interface.alpha", {"1", "10", "100"}}}, dir.string());
+  run_sweep(cases, 2);
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), cases, "rccm", b1);
+  CHECK(lines(dir / "summary.csv") == 4);  // header and three rows
+  CHECK(lines(dir / "jobs.txt") == 3);
+  for (const SweepCase& c : cases) {
+    INFO(c.name << ": " << c.error);
+    REQUIRE(c.error.empty());
+    CHECK(fs::exists(dir / c.name / "report.txt"));
+  }
+  const double p1 = cases[0].result.peak_force[0], p10 = cases[1].result.peak_force[0],
+               p100 = cases[2].result.peak_force[0];
+  INFO("peak forces " << p1 << " " << p10 << " " << p100);
+  CHECK(p1 < p10);
+  CHECK(p10 < p100);
+  // A more viscous interface debonds less by T.
+  CHECK(cases[2].result.snapshots.back().debonded_length < cases[0].result.snapshots.back().debonded_length);
+}

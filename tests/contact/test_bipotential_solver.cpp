@@ -1,0 +1,180 @@
+// The bipotential solver on random condensed problems: Signorini and Coulomb residuals,
+// Gauss-Seidel and Jacobi forms agree, the spring folded into the local solve.
+#include "rccm/contact/bipotential_solver.hpp"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+using namespace rccm;
+
+namespace {
+
+/// A random SPD flexibility of n 2D pairs, diagonally dominant like an FE Delassus matrix,
+/// and a condensed problem on it (with springs D1 folded into W0, and D(beta) <= D1).
+struct RandomProblem {
+  RandomProblem(int n, std::mt19937& gen, bool springs) {
+    std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
+    const Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(2 * n, 2 * n, [&]() { return U(gen); });
+    Eigen::MatrixXd Wd = B * B.transpose() / (2.0 * n) + Eigen::MatrixXd::Identity(2 * n, 2 * n);
+    pb.q0 = Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return U(gen); });
+    pb.mubar = Eigen::VectorXd::NullaryExpr(n, [&]() { return 0.4 * P(gen); });
+    pb.g0 = Eigen::VectorXd::Zero(n);
+    pb.u_ref = Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return 0.1 * U(gen); });
+    pb.D1 = Eigen::VectorXd::Zero(2 * n);
+    pb.Dbeta = Eigen::VectorXd::Zero(2 * n);
+    if (springs) {
+      // W0 = (W^-1 + D1)^-1 holds springs D1; the problem carries D(beta) <= D1.
+      pb.D1 = Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return 2.0 * P(gen); });
+      const Eigen::VectorXd beta = Eigen::VectorXd::NullaryExpr(n, [&]() { return P(gen); });
+      for (int i = 0; i < n; ++i) pb.Dbeta.segment<2>(2 * i) = beta[i] * beta[i] * pb.D1.segment<2>(2 * i);
+      const Eigen::MatrixXd Winv = Wd.inverse();
+      Wd = (Winv + Eigen::MatrixXd(pb.D1.asDiagonal())).inverse();
+      Wd = 0.5 * (Wd + Wd.transpose()).eval();
+    }
+    W = DenseDelassus(Wd);
+    pb.W0 = &W;
+  }
+  RandomProblem(const RandomProblem&) = delete;
+  const Eigen::MatrixXd& matrix() const { return *W.dense(); }
+
+  DenseDelassus W{Eigen::MatrixXd()};
+  ContactProblem pb;
+};
+
+SolverParams params(SweepForm form, bool active_set) {
+  SolverParams p;
+  p.tolerance = 1e-10;
+  p.max_iterations = 20000;
+  p.form = form;
+  p.active_set = active_set;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("random problems: Signorini and Coulomb hold, both forms agree", "[solver]") {
+  std::mt19937 gen(7);
+  for (bool springs : {false, true})
+    for (int trial = 0; trial < 40; ++trial) {
+      const RandomProblem rp(1 + trial % 8, gen, springs);
+      const ContactSolution gs = BipotentialSolver(params(SweepForm::GaussSeidel, true)).solve(rp.pb, {}, {});
+      const ContactSolution gs_plain = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(rp.pb, {}, {});
+      const ContactSolution ja = BipotentialSolver(params(SweepForm::Jacobi, false)).solve(rp.pb, {}, {});
+      INFO("trial " << trial << " springs " << springs);
+      REQUIRE(gs.converged);
+      INFO("plain GS: sweeps " << gs_plain.iterations << " residual " << gs_plain.residual << " worst " << gs_plain.worst_node << " mubar " << rp.pb.mubar.transpose());
+      REQUIRE(gs_plain.converged);
+      REQUIRE(ja.converged);
+      for (const ContactSolution* s : {&gs, &gs_plain, &ja}) {
+        // The solution is consistent with the condensed equations ...
+        const Eigen::VectorXd y = s->Rbar + (rp.pb.D1 - rp.pb.Dbeta).cwiseProduct(s->u);
+        REQUIRE((rp.matrix() * y + rp.pb.q0 - s->u).norm() <= 1e-10 * (1 + s->u.norm()));
+        // ... and with the law.
+        const ContactResiduals r = residuals(rp.pb, *s);
+        INFO("pen " << r.penetration << " ten " << r.tension << " comp " << r.complementarity << " coul "
+                    << r.coulomb << " stick " << r.stick_slip << " dir " << r.slip_direction);
+        REQUIRE(r.max() <= 1e-8);
+      }
+      const double scale = 1 + gs.Rbar.norm();
+      REQUIRE((gs.Rbar - ja.Rbar).norm() <= 1e-8 * scale);
+      REQUIRE((gs.Rbar - gs_plain.Rbar).norm() <= 1e-8 * scale);
+    }
+}
+
+TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain Gauss-Seidel does", "[solver]") {
+  // A sequence of nearby problems (load, beta and friction drifting, as between the stages
+  // of the integrator), each started from the previous solution with one solver object that
+  // keeps its factorization, against cold plain Gauss-Seidel.
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int trial = 0; trial < 12; ++trial) {
+    RandomProblem rp(4 + trial, gen, true);
+    BipotentialSolver warm(params(SweepForm::GaussSeidel, true));
+    ContactSolution previous = warm.solve(rp.pb, {}, {});
+    REQUIRE(previous.converged);
+    int exact_solves = 0, sweeps = 0;
+    for (int step = 0; step < 20; ++step) {
+      rp.pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
+      for (Eigen::Index c = 0; c < rp.pb.Dbeta.size(); ++c)
+        rp.pb.Dbeta[c] = std::clamp(rp.pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, rp.pb.D1[c]);
+      rp.pb.mubar = (rp.pb.mubar.array() + 0.005).min(0.5);
+      const ContactSolution s = warm.solve(rp.pb, previous.Rbar, previous.u);
+      const ContactSolution reference = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(rp.pb, {}, {});
+      INFO("trial " << trial << " step " << step);
+      REQUIRE(s.converged);
+      REQUIRE(reference.converged);
+      const Eigen::VectorXd y = s.Rbar + (rp.pb.D1 - rp.pb.Dbeta).cwiseProduct(s.u);
+      REQUIRE((rp.matrix() * y + rp.pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));
+      REQUIRE(residuals(rp.pb, s).max() <= 1e-8);
+      REQUIRE((s.Rbar - reference.Rbar).norm() <= 1e-8 * (1 + reference.Rbar.norm()));
+      exact_solves += s.exact_solves;
+      sweeps += s.iterations;
+      previous = s;
+    }
+    // Warm: a verifying pass, an exact step and a second pass, rarely more.
+    INFO("trial " << trial << ": " << sweeps << " passes and sweeps, " << exact_solves << " exact solves in 20 solves");
+    CHECK(sweeps <= 20 * 3);
+  }
+}
+
+TEST_CASE("a single free node is solved exactly in each regime", "[solver]") {
+  // One node, W = diag(1, 1), no springs, mubar = 0.5: u = R + q.
+  const DenseDelassus W(Eigen::MatrixXd::Identity(2, 2));
+  ContactProblem pb;
+  pb.W0 = &W;
+  pb.mubar = Eigen::VectorXd::Constant(1, 0.5);
+  pb.g0 = Eigen::VectorXd::Zero(1);
+  pb.u_ref = pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(2);
+  BipotentialSolver solver(params(SweepForm::GaussSeidel, true));
+  SECTION("opening: no force") {
+    pb.q0 = Eigen::Vector2d(0.3, 1.0);
+    const ContactSolution s = solver.solve(pb, {}, {});
+    CHECK(s.Rbar.norm() < 1e-14);
+    CHECK(s.status[0] == Status::Separated);
+  }
+  SECTION("pressed, small shear: stick, R = -q") {
+    pb.q0 = Eigen::Vector2d(0.2, -1.0);
+    const ContactSolution s = solver.solve(pb, {}, {});
+    CHECK((s.Rbar - Eigen::Vector2d(-0.2, 1.0)).norm() < 1e-12);
+    CHECK(s.status[0] == Status::Stick);
+  }
+  SECTION("pressed, large shear: slide with R_t = -mubar R_n") {
+    pb.q0 = Eigen::Vector2d(2.0, -1.0);
+    const ContactSolution s = solver.solve(pb, {}, {});
+    CHECK(s.Rbar[1] == Approx(1.0));
+    CHECK(s.Rbar[0] == Approx(-0.5));
+    CHECK(s.u[0] == Approx(1.5));  // slip = q_t + R_t
+    CHECK(s.status[0] == Status::Slide);
+  }
+}
+
+TEST_CASE("a solver reused along a sequence of problems (cached active-set factorization) gives fresh solutions",
+          "[solver]") {
+  // Like the stages of a time step: the same W0, beta and the load drifting, so the status
+  // pattern repeats or changes at a few nodes (low-rank update) or many (new factorization).
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> U(-1, 1);
+  RandomProblem rp(12, gen, true);
+  BipotentialSolver reused(params(SweepForm::GaussSeidel, true));
+  ContactSolution previous;
+  for (int k = 0; k < 60; ++k) {
+    for (int i = 0; i < rp.pb.size(); ++i) {
+      const double beta = std::sqrt(rp.pb.Dbeta[2 * i] / rp.pb.D1[2 * i]);
+      const double next = std::clamp(beta * (1 - 0.05 * std::abs(U(gen))), 0.0, 1.0);
+      rp.pb.Dbeta.segment<2>(2 * i) = next * next * rp.pb.D1.segment<2>(2 * i);
+      rp.pb.mubar[i] = 0.4 * (1 - next);
+    }
+    rp.pb.q0 += 0.1 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
+    const ContactSolution warm = reused.solve(rp.pb, previous.Rbar, previous.u);
+    const ContactSolution fresh = BipotentialSolver(params(SweepForm::GaussSeidel, true)).solve(rp.pb, {}, {});
+    INFO("problem " << k);
+    REQUIRE(warm.converged);
+    REQUIRE(residuals(rp.pb, warm).max() <= 1e-8);
+    REQUIRE((warm.Rbar - fresh.Rbar).norm() <= 1e-8 * (1 + fresh.Rbar.norm()));
+    previous = warm;
+  }
+}

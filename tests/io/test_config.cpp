@@ -1,0 +1,82 @@
+// The config loader: every bad file of tests/bad/ is refused with the message its first
+// line expects ("# expect: ..."), which names the line and the setting.
+#include "helpers.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/model/model.hpp"
+#include "rccm/io/output_directory.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace rccm;
+namespace fs = std::filesystem;
+
+namespace {
+
+const char* good = R"(
+mesh = { size = [10.0, 5.0]; nx = 4; ny = 2; };
+material = { E = 1000; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.3; };
+loads = ( { node_set = "top_left"; type = "displacement"; component = "y";
+            table = ( (0.0, 0.0), (0.5, 0.2), (1.0, 0.1) ); } );
+time = { T = 1.0; steps = 4; };
+)";
+
+}  // namespace
+
+TEST_CASE("every bad config is refused with file, line and setting", "[config]") {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(RCCM_SOURCE_DIR) / "tests" / "bad")) {
+    if (entry.path().extension() != ".cfg") continue;
+    std::ifstream in(entry.path());
+    std::string first;
+    std::getline(in, first);
+    REQUIRE(first.rfind("# expect: ", 0) == 0);
+    const std::string expect = first.substr(10);
+    INFO(entry.path().filename().string());
+    const auto build = [&]() {  // what `rccm run` does before writing anything
+      const Config c = load_config(entry.path().string());
+      check_output_directory(c, false);
+      const Model model = test::make_model(c);
+    };
+    CHECK_THROWS_AS(build(), InputError);
+    CHECK_THROWS_WITH(build(), Catch::Contains(expect) && Catch::Contains(entry.path().string()));
+    ++count;
+  }
+  CHECK(count >= 20);
+}
+
+TEST_CASE("integers convert to numbers and tables are piecewise linear", "[config]") {
+  const Config c = test::config_from_text(good);
+  CHECK(c.material.E == 1000.0);  // written as an integer
+  const TimeFunction& f = c.loads[0].amplitude;
+  CHECK(f(0.25) == Approx(0.1));
+  CHECK(f(0.75) == Approx(0.15));
+  CHECK(f(2.0) == Approx(0.1));  // held after the last point
+}
+
+TEST_CASE("overrides (--set) change any setting, and their errors name them", "[config]") {
+  const Config c = test::config_from_text(good, {"interface.mu=0.5", "solver.form=jacobi", "output.times=[0.5, 0.25]"});
+  CHECK(c.interfaces[0].mu == 0.5);
+  CHECK(c.solver.form == SweepForm::Jacobi);  // a bare word is a string
+  CHECK(test::config_from_text(good, {"solver.rho=\"paper\""}).solver.rho == RhoRule::Paper);
+  REQUIRE(c.output.times.size() == 2);
+  CHECK(c.output.times[0] == 0.25);
+  CHECK_THROWS_WITH(test::config_from_text(good, {"interface.mu=-1"}),
+                    Catch::Contains("--set interface.mu: must be >= 0 (got -1)"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"interface.Cm=3"}),
+                    Catch::Contains("--set interface.Cm: unknown setting; did you mean 'Cn'?"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"interface.mu"}), Catch::Contains("expected path=value"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"interface.mu=[1,"}), Catch::Contains("cannot parse"));
+  // A list element by its index.
+  CHECK(test::config_from_text(good, {"loads.[0].node_set=top"}).loads[0].node_set == "top");
+  CHECK_THROWS_WITH(test::config_from_text(good, {"loads.[7].value=1"}), Catch::Contains("numbered from 0"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"loads.value=1"}), Catch::Contains("e.g. loads.[0].value"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"time.[0].T=1"}), Catch::Contains("not one"));
+}
+
+TEST_CASE("a missing file is named", "[config]") {
+  CHECK_THROWS_WITH(load_config("/nonexistent/b1.cfg"), Catch::Contains("/nonexistent/b1.cfg: cannot read"));
+}

@@ -1,0 +1,186 @@
+// The FE body, the condensation and the contact solve against exact and direct solutions.
+#include "helpers.hpp"
+#include "rccm/contact/bipotential_solver.hpp"
+#include "rccm/fem/elasticity.hpp"
+#include "rccm/model/interface_state.hpp"
+#include "rccm/fem/loads.hpp"
+#include "rccm/model/model.hpp"
+
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <catch2/catch.hpp>
+
+using namespace rccm;
+
+namespace {
+
+std::string block_config(const std::string& element, const std::string& interface_extra,
+                         const std::string& loads) {
+  return R"(
+mesh = { size = [10.0, 5.0]; nx = 8; ny = 4; element = ")" + element + R"("; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 1.0e9; )" + interface_extra + R"( };
+loads = ( )" + loads + R"( );
+time = { T = 1.0; steps = 1; };
+solver = { tolerance = 1.0e-12; };
+)";
+}
+
+/// The contact solve at T = 1 s from the initial state.
+ContactSolution solve_at_T(const Model& model, const SolverParams& p) {
+  const InterfaceState s0 = InterfaceState::initial(model);
+  BipotentialSolver solver(p);
+  return solve_contact(model, solver, 1.0, s0.beta, s0);
+}
+
+}  // namespace
+
+TEST_CASE("bonded interface equals a direct solve of K plus the interface springs", "[model]") {
+  // beta uniform, no contact active (the loads open the interface everywhere, or the gap is
+  // large), so the interface is the spring a_i beta^2 C alone: compare with K + springs
+  // assembled here by hand and solved by Eigen's LDLT.
+  const std::string loads =
+      R"({ node_set = "top"; type = "traction"; component = "y"; value = 2.0; },
+         { node_set = "right"; type = "traction"; component = "x"; value = -1.5; })";
+  for (const std::string element : {"T3", "Q4"})
+    for (double beta : {1.0, 0.6})
+      for (double g0 : {0.0, 100.0}) {
+        const std::string extra = "mu = 0.3; beta0 = " + std::to_string(beta) + "; g0 = " + std::to_string(g0) + ";";
+        const Config cfg = test::config_from_text(block_config(element, extra, loads));
+        const Model model = test::make_model(cfg);
+        const ContactSolution s = solve_at_T(model, cfg.solver);
+        REQUIRE(s.converged);
+        const Eigen::VectorXd u = model.condensation().displacement(cfg.time.T, s.y);
+
+        SparseMatrix K = assemble_stiffness(model.mesh(), cfg.material);
+        const double h = 10.0 / 8;
+        const auto& bottom = model.mesh().node_set("bottom");
+        for (std::size_t k = 0; k < bottom.size(); ++k) {
+          const double a = (k == 0 || k + 1 == bottom.size()) ? h / 2 : h;
+          K.coeffRef(2 * bottom[k], 2 * bottom[k]) += a * beta * beta * 30.0;
+          K.coeffRef(2 * bottom[k] + 1, 2 * bottom[k] + 1) += a * beta * beta * 50.0;
+        }
+        Eigen::VectorXd f = Eigen::VectorXd::Zero(K.rows());
+        const auto& top = model.mesh().node_set("top");
+        for (std::size_t k = 0; k < top.size(); ++k)
+          f[2 * top[k] + 1] = 2.0 * ((k == 0 || k + 1 == top.size()) ? h / 2 : h);
+        const auto& right = model.mesh().node_set("right");
+        for (std::size_t k = 0; k < right.size(); ++k)
+          f[2 * right[k]] = -1.5 * ((k == 0 || k + 1 == right.size()) ? 5.0 / 8 : 5.0 / 4);
+        Eigen::SimplicialLDLT<SparseMatrix> direct(K);
+        const Eigen::VectorXd u_direct = direct.solve(f);
+        INFO(element << " beta " << beta << " g0 " << g0);
+        CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
+        CHECK(s.Rbar.norm() <= 1e-10 * (1 + s.Radh(model.contact_problem(1, model.initial_beta(), s.u)).norm()));
+      }
+}
+
+TEST_CASE("W0 from the Schur complement of the interface DOFs equals P K0^-1 P^T by direct solves", "[model]") {
+  // The mesh rotated by 30 degrees, so that P mixes x and y, and the bottom-left contact
+  // node held in x: its rows of P read a prescribed DOF, which must contribute nothing.
+  const std::string loads =
+      R"({ node_set = "bottom_left"; type = "displacement"; component = "x"; value = 0.0; },
+         { node_set = "top"; type = "traction"; component = "y"; value = 2.0; })";
+  const Config cfg = test::config_from_text(block_config("Q4", "mu = 0.3;", loads), {"mesh.rotation=30"});
+  const Model model = test::make_model(cfg);
+  const SparseMatrix K0 = model.stiffness() + model.interface().initial_springs();
+  const std::vector<int> prescribed = prescribed_dofs(model.loads());
+  REQUIRE(prescribed.size() == 1);
+  std::vector<int> free;  // all DOFs but the prescribed one
+  for (int d = 0; d < K0.rows(); ++d)
+    if (d != prescribed[0]) free.push_back(d);
+  const Eigen::MatrixXd K0d = K0;
+  Eigen::MatrixXd K0_FF(free.size(), free.size()), P_F(model.interface().P.rows(), free.size());
+  const Eigen::MatrixXd P = model.interface().P;
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    P_F.col(a) = P.col(free[a]);
+    for (std::size_t b = 0; b < free.size(); ++b) K0_FF(a, b) = K0d(free[a], free[b]);
+  }
+  const Eigen::MatrixXd W_direct = P_F * K0_FF.ldlt().solve(P_F.transpose());
+  const Eigen::MatrixXd& W0 = *model.condensation().W0().dense();
+  CHECK((W0 - W_direct).norm() <= 1e-12 * W_direct.norm());
+  CHECK(W0 == W0.transpose());
+  CHECK(std::abs(P(0, prescribed[0])) > 0.1);  // contact node 0's t row does read the prescribed DOF
+}
+
+TEST_CASE("frictionless block pressed by a uniform pressure: uniform contact pressure", "[model]") {
+  // Left edge on rollers (u_x = 0), top loaded by p: the exact stress is uniform,
+  // sigma_yy = -p, so every contact node carries Rbar_n = p a_i.
+  const double p = 10.0;
+  for (const std::string element : {"T3", "Q4"}) {
+    const std::string loads =
+        R"({ node_set = "top"; type = "traction"; component = "y"; value = -10.0; },
+           { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; })";
+    const Config cfg = test::config_from_text(block_config(element, "mu = 0.0; beta0 = 0.0;", loads));
+    const Model model = test::make_model(cfg);
+    const ContactSolution s = solve_at_T(model, cfg.solver);
+    REQUIRE(s.converged);
+    const Interface& I = model.interface();
+    for (int i = 0; i < I.size(); ++i) {
+      INFO(element << " node " << i);
+      CHECK(s.Rbar[2 * i + 1] / I.pairs[i].measure == Approx(p).epsilon(1e-9));
+      CHECK(std::abs(s.Rbar[2 * i]) <= 1e-9 * p);
+      CHECK(std::abs(s.u[2 * i + 1]) <= 1e-12);
+    }
+  }
+}
+
+TEST_CASE("block pushed sideways under compression, beta = 0: Coulomb at every node", "[model]") {
+  const double mu = 0.3, p = 10.0;
+  for (const std::string element : {"T3", "Q4"}) {
+    SECTION(element + ": above the threshold every node slides with |Rbar_t| = mu Rbar_n") {
+      const std::string loads =
+          R"({ node_set = "top"; type = "traction"; component = "y"; value = -10.0; },
+             { node_set = "left"; type = "displacement"; component = "x"; value = 1.0; })";
+      const Config cfg = test::config_from_text(block_config(element, "mu = 0.3; beta0 = 0.0;", loads));
+      const Model model = test::make_model(cfg);
+      const ContactSolution s = solve_at_T(model, cfg.solver);
+      REQUIRE(s.converged);
+      for (int i = 0; i < model.contact_nodes(); ++i) {
+        INFO("node " << i);
+        CHECK(s.status[i] == Status::Slide);
+        CHECK(s.u[2 * i] > 0);                                            // slips along +x
+        CHECK(s.Rbar[2 * i] == Approx(-mu * s.Rbar[2 * i + 1]).epsilon(1e-9));  // friction opposes it
+      }
+    }
+    SECTION(element + ": below the threshold no node slips") {
+      // A horizontal traction whose resultant is 5 % of mu times the normal load. nu = 0:
+      // with nu > 0 the Poisson expansion under the pressure, resisted by friction, makes
+      // the edge nodes slip whatever the push (real physics, not what this test is about).
+      const double tx = 0.05 * mu * p * 10.0 / 5.0;
+      const std::string loads = R"({ node_set = "top"; type = "traction"; component = "y"; value = -10.0; },
+             { node_set = "left"; type = "traction"; component = "x"; value = )" + std::to_string(tx) + "; }";
+      const Config cfg =
+          test::config_from_text(block_config(element, "mu = 0.3; beta0 = 0.0;", loads), {"material.nu=0.0"});
+      const Model model = test::make_model(cfg);
+      const ContactSolution s = solve_at_T(model, cfg.solver);
+      REQUIRE(s.converged);
+      double sum_t = 0;
+      for (int i = 0; i < model.contact_nodes(); ++i) {
+        INFO("node " << i);
+        CHECK(s.status[i] == Status::Stick);
+        CHECK(std::abs(s.u[2 * i]) <= 1e-12);
+        CHECK(std::abs(s.Rbar[2 * i]) < mu * s.Rbar[2 * i + 1]);
+        sum_t += s.Rbar[2 * i];
+      }
+      CHECK(sum_t == Approx(-tx * 5.0).epsilon(1e-9));  // friction balances the push
+    }
+  }
+}
+
+TEST_CASE("a structure held by nothing is refused with a message", "[model]") {
+  // Frictionless contact only, beta0 = 0, but the initial springs make K0 regular; a body
+  // with no interface springs and no support cannot be built: a force-loaded block on an
+  // interface of one node is free to rotate.
+  const std::string text = R"(
+mesh = { size = [10.0, 5.0]; nx = 2; ny = 2; node_sets = ( { name = "one"; box = [0.0, 0.0, 0.0, 0.0]; } ); };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "one"; Cn = 50.0; Ct = 30.0; w = 1.0; mu = 0.0; };
+loads = ( { node_set = "top"; type = "force"; component = "y"; value = -1.0; } );
+time = { T = 1.0; };
+)";
+  const Config cfg = test::config_from_text(text);
+  CHECK_THROWS_WITH(test::make_model(cfg), Catch::Contains("chain of boundary edges"));
+  const Config free_cfg = test::config_from_text(text, {"interface.boundary=\"bottom\"", "interface.Cn=1e-30", "interface.Ct=1e-30"});
+  CHECK_THROWS_WITH(test::make_model(free_cfg), Catch::Contains("not restrained"));
+}

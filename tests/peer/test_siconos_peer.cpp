@@ -1,0 +1,59 @@
+// Siconos numerics as an independent peer for the contact step (built when Siconos is found).
+#include "helpers.hpp"
+#include "rccm/contact/bipotential_solver.hpp"
+#include "rccm/base/config.hpp"
+#include "rccm/model/interface_state.hpp"
+#include "rccm/app/simulation.hpp"
+#include "siconos_peer.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <fstream>
+
+using namespace rccm;
+
+namespace {
+SolverParams tight() {
+  SolverParams p;
+  p.tolerance = 1e-12;
+  p.max_iterations = 20000;
+  return p;
+}
+}  // namespace
+
+TEST_CASE("Siconos test problems: where Siconos NSGS converges, so does the bipotential solver", "[peer]") {
+  const std::string dir = std::string(RCCM_SOURCE_DIR) + "/../shared/data/siconos-fc2d/";
+  if (!std::ifstream(dir + "README.md")) {
+    WARN("not checked: " << dir << " is missing (the shared/ folder lives beside the checkout)");
+    return;
+  }
+  for (const char* f : {"FrictionContactProblem00394.dat", "FrictionContactProblem00031.dat",
+                        "FrictionContactProblem00071.dat"}) {
+    const PlainContactProblem p = peer::read_dat(dir + f);
+    const peer::PeerSolution n = peer::solve(p, "nsgs", 1e-10, 100000);
+    const ContactSolution s = BipotentialSolver(tight()).solve(from_plain(p), {}, {});
+    INFO(f << ": siconos error " << n.error << " in " << n.iterations << ", ours " << peer::error(p, s.Rbar) << " in "
+           << s.iterations);
+    REQUIRE(n.info == 0);
+    CHECK(s.converged);
+    CHECK(peer::error(p, s.Rbar) <= 1e-8);
+    CHECK((s.Rbar - n.R).norm() <= 1e-6 * (1 + n.R.norm()));
+  }
+}
+
+TEST_CASE("B1 and B2 condensed problems: Siconos and the bipotential solver give the same reactions", "[peer]") {
+  for (const char* file : {"b1.cfg", "b2.cfg"}) {
+    const Config cfg = load_config(std::string(RCCM_SOURCE_DIR) + "/config/" + file, {"integrator.method=euler"});
+    const Model model = test::make_model(cfg);
+    const std::vector<peer::StepProblem> problems = peer::step_problems(model, cfg, 40);
+    CHECK(problems.size() >= 4);
+    for (const peer::StepProblem& sp : problems) {
+      const peer::PeerSolution n = peer::solve(sp.plain, "nsgs", 1e-14, 100000);
+      const ContactSolution ours = BipotentialSolver(tight()).solve(sp.problem, {}, {});
+      const double scale = std::max(ours.Rbar.norm(), 1e-300);
+      INFO(file << " step " << sp.step << ": siconos error " << n.error << ", ours " << peer::error(sp.plain, ours.Rbar));
+      if (scale > 1e-6) CHECK((ours.Rbar - n.R).norm() <= 1e-8 * scale);
+      CHECK(peer::error(sp.plain, ours.Rbar) <= 1e-9);
+    }
+  }
+}
