@@ -8,8 +8,12 @@
 
 #include <cstdio>
 #include <fstream>
+#include <map>
+#include <sstream>
+#include <stdexcept>
 #include <string>
 #include <unistd.h>
+#include <vector>
 
 namespace rccm::test {
 
@@ -34,5 +38,55 @@ inline Config config_from_text(const std::string& text, const std::vector<std::s
 
 /// The model of a config on its built-in rectangle mesh, as `rccm run` builds it.
 inline Model make_model(const Config& cfg) { return Model(cfg, make_rectangle(cfg.mesh)); }
+
+/// A CSV file of rccm (RFC 4180: fields may be quoted, "" inside quotes) as columns by header.
+struct CsvTable {
+  std::vector<std::string> header;
+  std::vector<std::vector<std::string>> rows;
+  /// The numbers of a column, by its header.
+  std::vector<double> numbers(const std::string& name) const {
+    for (std::size_t j = 0; j < header.size(); ++j)
+      if (header[j] == name) {
+        std::vector<double> v;
+        for (const auto& r : rows) v.push_back(std::stod(r.at(j)));
+        return v;
+      }
+    throw std::runtime_error("no column '" + name + "'");
+  }
+};
+
+inline std::vector<std::string> split_csv_line(const std::string& line) {
+  std::vector<std::string> cells(1);
+  bool quoted = false;
+  for (std::size_t k = 0; k < line.size(); ++k) {
+    const char c = line[k];
+    if (quoted && c == '"' && k + 1 < line.size() && line[k + 1] == '"') cells.back() += '"', ++k;
+    else if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) cells.emplace_back();
+    else cells.back() += c;
+  }
+  return cells;
+}
+
+inline CsvTable read_csv(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  CsvTable t;
+  std::string line;
+  std::getline(in, line);
+  t.header = split_csv_line(line);
+  while (std::getline(in, line)) t.rows.push_back(split_csv_line(line));
+  return t;
+}
+
+/// Linear interpolation of (x, y) at xi (x increasing).
+inline double interpolate(const std::vector<double>& x, const std::vector<double>& y, double xi) {
+  if (xi <= x.front()) return y.front();
+  if (xi >= x.back()) return y.back();
+  std::size_t k = 1;
+  while (x[k] < xi) ++k;
+  const double s = (xi - x[k - 1]) / (x[k] - x[k - 1]);
+  return y[k - 1] + s * (y[k] - y[k - 1]);
+}
 
 }  // namespace rccm::test

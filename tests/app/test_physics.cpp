@@ -1,0 +1,171 @@
+// Physics that a wrong program cannot fake: B1 and B2 against an independent computation
+// (tools/reference/rccm_reference.py, no code in common: a semi-smooth Newton contact solver
+// and fully coupled backward Euler, Richardson-extrapolated), the damage dissipation against
+// the integral of alpha beta'^2, both dissipations growing step by step, and no friction
+// while an interface node is fully bonded (beta = 1: mubar = 0, docs/MODEL.md s3).
+#include "helpers.hpp"
+#include "rccm/app/simulation.hpp"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+using namespace rccm;
+namespace fs = std::filesystem;
+
+namespace {
+
+nlohmann::json reference(const std::string& name) {
+  std::ifstream in(std::string(RCCM_SOURCE_DIR) + "/tests/reference/" + name + ".json");
+  return nlohmann::json::parse(in);
+}
+
+struct Run {
+  RunResult result;
+  test::CsvTable curves, history;
+};
+
+/// Runs a shipped config with its files in a temporary directory; `observer` sees every step.
+Run run_shipped(const std::string& file, std::vector<std::string> overrides, BetaOde::Observer observer = {}) {
+  const fs::path dir = fs::temp_directory_path() / ("rccm_physics_" + file);
+  overrides.push_back("output.directory=\"" + dir.string() + "\"");
+  RunOptions o;
+  o.write_files = true;
+  o.force = true;
+  o.observer = std::move(observer);
+  Run r{Simulation(load_config(test::shipped(file), overrides), o).run(), {}, {}};
+  r.curves = test::read_csv((dir / "curves.csv").string());
+  r.history = test::read_csv((dir / "history.csv").string());
+  fs::remove_all(dir);
+  return r;
+}
+
+/// Largest |ours - reference| of beta along the interface at the reference's output times.
+double beta_difference(const RunResult& r, const nlohmann::json& ref) {
+  double worst = 0;
+  for (std::size_t k = 0; k < ref["times"].size(); ++k) {
+    const double t = ref["times"][k];
+    const Snapshot* s = nullptr;
+    for (const Snapshot& snap : r.snapshots)
+      if (std::abs(snap.t - t) < 1e-9) s = &snap;
+    REQUIRE(s != nullptr);
+    for (std::size_t i = 0; i < ref["beta"][k].size(); ++i)
+      worst = std::max(worst, std::abs(s->beta[Eigen::Index(i)] - ref["beta"][k][i].get<double>()));
+  }
+  return worst;
+}
+
+}  // namespace
+
+TEST_CASE("B1 against the independent reference: beta along the interface, peel force, energy", "[physics]") {
+  const nlohmann::json ref = reference("b1");
+  const Run run = run_shipped("b1.cfg", {"integrator.rtol=1e-8", "integrator.atol=1e-14"});
+  const RunResult& r = run.result;
+  const double dbeta = beta_difference(r, ref);
+  // The peel force at every accepted step up to 2 s (the reference is sampled every 1 ms there).
+  const std::vector<double> t = run.curves.numbers("t [s]"), F = run.curves.numbers("L0 top_left.y force [N]");
+  const std::vector<double> tr = ref["force_time"], Fr = ref["force"];
+  double dF = 0;
+  for (std::size_t k = 0; k < t.size(); ++k)
+    if (t[k] <= 2.0) dF = std::max(dF, std::abs(F[k] - test::interpolate(tr, Fr, t[k])));
+  const double peak = ref["peak_force"], damage = ref["damage_dissipation"], work = ref["external_work"];
+  std::cout << "B1 vs reference: max |dbeta| " << dbeta << ", max |dF| " << dF << " N (peak " << peak
+            << "), peak " << r.peak_force[0] << " at " << r.peak_time[0] << " s, damage dissipation "
+            << r.energy.damage_dissipation << " (" << damage << "), external work " << r.energy.external_work << " ("
+            << work << ")\n";
+  CHECK(dbeta < 1e-5);
+  CHECK(dF < 1e-4 * peak);
+  // The largest force over the accepted steps is the peak to within the steps near it.
+  CHECK(r.peak_force[0] <= peak * (1 + 1e-6));
+  CHECK(r.peak_force[0] == Approx(peak).epsilon(5e-4));
+  CHECK(r.peak_time[0] == Approx(ref["peak_time"].get<double>()).epsilon(0.02));
+  // The energy terms are trapezoid sums over the accepted steps: 1.3e-4 off at rtol 1e-8.
+  CHECK(r.energy.damage_dissipation == Approx(damage).epsilon(3e-4));
+  CHECK(r.energy.external_work == Approx(work).epsilon(3e-4));
+}
+
+TEST_CASE("B2 against the independent reference: beta at P, the shear resultant, dissipations", "[physics]") {
+  const nlohmann::json ref = reference("b2");
+  const Run run = run_shipped("b2.cfg", {"integrator.rtol=1e-8", "integrator.atol=1e-14"});
+  const RunResult& r = run.result;
+  // beta at P (the watched point) at the output times, relative: it is ~1e-5.
+  const std::vector<double> t = run.history.numbers("t [s]"), beta_P = run.history.numbers("P beta");
+  const std::vector<double> tw = ref["watch_time"], bw = ref["watch_beta"];
+  double dbeta_P = 0;
+  for (double to : ref["times"]) {
+    for (std::size_t k = 0; k < t.size(); ++k)
+      if (std::abs(t[k] - to) < 1e-9)
+        dbeta_P = std::max(dbeta_P, std::abs(beta_P[k] / test::interpolate(tw, bw, to) - 1));
+  }
+  const std::vector<double> tc = run.curves.numbers("t [s]"), Fx = run.curves.numbers("L0 left_above.x force [N]");
+  const std::vector<double> tr = ref["force_time"], Fr = ref["force"];
+  double dF = 0, Fmax = 0;
+  for (std::size_t k = 0; k < tc.size(); ++k) {
+    dF = std::max(dF, std::abs(Fx[k] - test::interpolate(tr, Fr, tc[k])));
+    Fmax = std::max(Fmax, std::abs(Fx[k]));
+  }
+  std::cout << "B2 vs reference: max relative |dbeta_P| " << dbeta_P << ", max |dFx| " << dF << " N of " << Fmax
+            << ", damage " << r.energy.damage_dissipation << " (" << ref["damage_dissipation"] << "), friction "
+            << r.energy.friction_dissipation << " (" << ref["friction_dissipation"] << ")\n";
+  CHECK(dbeta_P < 1e-4);
+  CHECK(dF < 1e-5 * Fmax);
+  CHECK(beta_difference(r, ref) < 1e-8);
+  // Trapezoid sums over the accepted steps (4.6e-4 off for the damage: beta falls within 0.2 s).
+  CHECK(r.energy.damage_dissipation == Approx(ref["damage_dissipation"].get<double>()).epsilon(1e-3));
+  CHECK(r.energy.friction_dissipation == Approx(ref["friction_dissipation"].get<double>()).epsilon(1e-5));
+}
+
+TEST_CASE("the damage dissipation is the integral of alpha beta'^2, and both dissipations grow at every step",
+          "[physics]") {
+  for (const char* file : {"b1.cfg", "b2-mild.cfg"}) {
+    const std::vector<std::string> settings = {"integrator.rtol=1e-8", "integrator.atol=1e-14"};
+    const Model model = test::make_model(load_config(test::shipped(file), settings));
+    const Interface& I = model.interface();
+    // sum_i a_i alpha int beta_i'^2 dt, by the difference quotients of the accepted steps.
+    double alpha_beta_dot2 = 0;
+    Eigen::VectorXd previous;
+    const Run run = run_shipped(file, settings, [&](const AcceptedStep& a) {
+      if (previous.size() > 0 && a.dt > 0)
+        for (int i = 0; i < I.size(); ++i) {
+          const double rate = (a.state.beta[i] - previous[i]) / a.dt;
+          alpha_beta_dot2 += I.pairs[i].measure * I.law(i).alpha * rate * rate * a.dt;
+        }
+      previous = a.state.beta;
+    });
+    const double D = run.result.energy.damage_dissipation;
+    INFO(file << ": damage dissipation " << D << ", sum a alpha beta'^2 dt " << alpha_beta_dot2);
+    CHECK(D > 0);
+    CHECK(alpha_beta_dot2 == Approx(D).epsilon(2e-3));
+    // Dissipations never decrease (trapezoid increments, to round-off of the total).
+    for (const char* column : {"damage dissipation [N mm]", "friction dissipation [N mm]"}) {
+      const std::vector<double> v = run.curves.numbers(column);
+      double worst = 0;
+      for (std::size_t k = 1; k < v.size(); ++k) worst = std::min(worst, v[k] - v[k - 1]);
+      INFO(column << ": largest decrease " << worst << " of " << v.back());
+      CHECK(worst >= -1e-9 * std::abs(v.back()));
+    }
+  }
+}
+
+TEST_CASE("no friction while fully bonded: Rbar_t = 0 wherever beta = 1, under compression and shear", "[physics]") {
+  // B2 presses the block (Rbar_n > 0 everywhere) and shears it: while beta = 1 the shear goes
+  // to the adhesive spring, and the cone with mubar = mu (1 - beta) = 0 holds no friction.
+  for (const char* file : {"b2.cfg", "b2-mild.cfg", "b1.cfg"}) {
+    int bonded_pressed = 0;
+    double worst = 0;
+    run_shipped(file, {"time.T=0.5", "output.times=[]"}, [&](const AcceptedStep& a) {
+      const double scale = a.state.Rbar.cwiseAbs().maxCoeff();
+      for (Eigen::Index i = 0; i < a.state.beta.size(); ++i)
+        if (a.state.beta[i] == 1.0) {
+          worst = std::max(worst, std::abs(a.state.Rbar[2 * i]) / scale);
+          if (a.state.Rbar[2 * i + 1] > 1e-6 * scale && std::abs(a.state.u[2 * i]) > 0) ++bonded_pressed;
+        }
+    });
+    INFO(file << ": " << bonded_pressed << " bonded, pressed and sheared node-steps");
+    CHECK(bonded_pressed > 0);
+    CHECK(worst == 0.0);
+  }
+}
