@@ -1,4 +1,4 @@
-// The single-node solution of the beta ODE under a prescribed opening u_n = v t (MODEL.md s3):
+// The single-node solution of the beta ODE under a prescribed opening u_n = v t (docs/MODEL.md s3):
 //   alpha beta' = -(C v^2 t^2 beta - w)^+,  beta(0) = beta0.
 // Inactive until t0 = sqrt(w / (C v^2 beta0)); after it the ODE is linear and stays active,
 // and the integrating factor exp(k t^3), k = C v^2 / (3 alpha), gives

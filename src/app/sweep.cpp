@@ -70,7 +70,7 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
     all.push_back("output.directory=\"" + directory + "/" + c.name + "\"");
     for (const std::string& o : c.overrides)
       if (o.rfind("interface.alpha=", 0) == 0 && std::strtod(o.c_str() + 16, nullptr) == 0.0) {
-        all.push_back("integrator.method=\"rate-independent\"");  // alpha = 0: the limit (MODEL.md s3)
+        all.push_back("integrator.method=\"rate-independent\"");  // alpha = 0: the limit (docs/MODEL.md s3)
         c.overrides.push_back(all.back());
       }
     c.config = load_config(config_file, all);

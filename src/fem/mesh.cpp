@@ -7,11 +7,6 @@
 
 namespace rccm {
 
-CellType Mesh::type(std::size_t cell) const {
-  RCCM_VERIFY(dim == 2 && (cells[cell].size() == 3 || cells[cell].size() == 4), "a 2D cell of 3 or 4 nodes");
-  return cells[cell].size() == 3 ? CellType::T3 : CellType::Q4;
-}
-
 std::vector<std::string> Mesh::node_set_names() const {
   std::vector<std::string> names;
   for (const auto& [name, nodes] : node_sets) names.push_back(name);

@@ -287,6 +287,12 @@ MeshParams read_mesh(const Reader& r, const Setting& root) {
       if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
       r.only(s, {"name", "box"});
       NodeSetDef d{r.text(s, "name", "", true), r.fixed<4>(s, "box")};
+      if (d.name.empty()) r.fail(s["name"], "must not be empty");
+      const std::vector<std::string>& builtin = rectangle_set_names();
+      if (std::find(builtin.begin(), builtin.end(), d.name) != builtin.end())
+        r.fail(s["name"], "'" + d.name + "' is a node set every rectangle has; give the box set another name");
+      for (const NodeSetDef& earlier : p.node_sets)
+        if (earlier.name == d.name) r.fail(s["name"], "a node set named '" + d.name + "' is already defined above");
       if (d.box[0] > d.box[1] || d.box[2] > d.box[3]) r.fail(s["box"], "needs xmin <= xmax and ymin <= ymax");
       p.node_sets.push_back(d);
     }

@@ -78,7 +78,7 @@ struct ArkodeIntegrator::Impl {
       check(ARKStepSetLinearSolver(mem, LS, J), "ARKStepSetLinearSolver");
       check(ARKStepSetJacFn(mem, jacobian), "ARKStepSetJacFn");
       // The Newton matrix I - gamma J is rebuilt every step (the step size and the active set
-      // of the max(0, .) change: BUILD-FACTS.md); J itself is evaluated again after a Newton
+      // of the max(0, .) change); J itself is evaluated again after a Newton
       // failure and at least every 51 steps (ARKODE's default). On B1, J every step measured
       // no better: 7635 contact solves against 7553.
       check(ARKStepSetLSetupFrequency(mem, 1), "ARKStepSetLSetupFrequency");

@@ -1,4 +1,4 @@
-// B1 and B2 from config/ (BENCHMARKS.md): physics that must hold at every accepted step.
+// B1 and B2 from config/ (docs/BENCHMARKS.md): physics that must hold at every accepted step.
 #include "helpers.hpp"
 #include "rccm/base/config.hpp"
 #include "rccm/base/errors.hpp"
@@ -77,7 +77,7 @@ TEST_CASE("B2 shear: invariants at every step, pure Coulomb sliding once beta is
   const RunResult r = run("b2.cfg", {}, checks);
   checks.require_invariants();
   const Snapshot& end = r.snapshots.back();
-  CHECK(end.beta.maxCoeff() < 1e-3);  // BENCHMARKS.md: beta falls almost uniformly
+  CHECK(end.beta.maxCoeff() < 1e-3);  // docs/BENCHMARKS.md: beta falls almost uniformly
   for (Eigen::Index i = 0; i < end.beta.size(); ++i) {
     const double Rt = end.Rbar[2 * i], Rn = end.Rbar[2 * i + 1];
     INFO("node " << i);

@@ -1,5 +1,5 @@
 // rccm sweep: the grid of cases, the rate-independent case, and a physical check of the
-// alpha study: more viscosity, higher peak peel force (MODEL.md s3, BENCHMARKS.md B1).
+// alpha study: more viscosity, higher peak peel force (docs/MODEL.md s3, docs/BENCHMARKS.md B1).
 #include "rccm/app/sweep.hpp"
 
 #include <catch2/catch.hpp>

@@ -23,11 +23,6 @@ class ElasticProblem {
   ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
                  const std::vector<int>& interface_dofs = {});
 
-  int num_dofs() const { return static_cast<int>(free_index_.size()); }
-  const std::vector<int>& free_dofs() const { return free_; }
-  const std::vector<int>& prescribed_dofs() const { return prescribed_; }
-  double rcond() const { return factor_->rcond(); }
-
   /// Full displacement for nodal forces f and prescribed values (full-size vectors;
   /// only the prescribed entries of `u_prescribed` are read): solves K0_FF u_F = f_F - K0_FD u_D.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& f, const Eigen::MatrixXd& u_prescribed) const;
@@ -37,11 +32,11 @@ class ElasticProblem {
   /// P K0^-1 P^T = G^T G with G = L_CC^-1 P_C^T: one dense triangular solve (docs/MODEL.md s4).
   Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
 
+ private:
   /// Restriction of full-size columns to the free DOFs, and its transpose.
   Eigen::MatrixXd restrict_free(const Eigen::MatrixXd& full) const;
   Eigen::MatrixXd extend_free(const Eigen::MatrixXd& free) const;
 
- private:
   std::vector<int> free_, prescribed_;
   std::vector<int> free_index_;  // global DOF -> index among free DOFs, or -1
   SparseMatrix K0_FD_;

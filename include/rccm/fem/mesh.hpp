@@ -19,9 +19,6 @@ struct Placement {
   Eigen::Vector3d operator()(const Eigen::Vector3d& x) const { return origin + rotation * (x - origin); }
 };
 
-/// Element types, known from the dimension and the number of nodes of a cell.
-enum class CellType { T3, Q4 };
-
 struct Mesh {
   int dim = 2;
   std::vector<Eigen::Vector3d> nodes;            // mm; z = 0 in 2D
@@ -34,7 +31,6 @@ struct Mesh {
   /// Degrees of freedom: `dim` per node, dof(n, c) = dim n + c.
   int num_dofs() const { return dim * num_nodes(); }
   int dof(int node, int component) const { return dim * node + component; }
-  CellType type(std::size_t cell) const;
 
   /// The nodes of a named set; throws InputError naming the nearest known set.
   const std::vector<int>& node_set(const std::string& name) const;
