@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <unistd.h>
 
 using namespace rccm;
 namespace fs = std::filesystem;
@@ -30,7 +31,10 @@ struct Run {
 
 /// Runs a shipped config with its files in a temporary directory; `observer` sees every step.
 Run run_shipped(const std::string& file, std::vector<std::string> overrides, BetaOde::Observer observer = {}) {
-  const fs::path dir = fs::temp_directory_path() / ("rccm_physics_" + file);
+  // Its own directory: CTest runs the test cases of this file side by side.
+  static int runs = 0;
+  const fs::path dir =
+      fs::temp_directory_path() / ("rccm_physics_" + std::to_string(::getpid()) + "_" + std::to_string(++runs));
   overrides.push_back("output.directory=\"" + dir.string() + "\"");
   RunOptions o;
   o.write_files = true;
