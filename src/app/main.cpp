@@ -1,20 +1,26 @@
 // rccm: quasi-static FE contact with the RCCM interface law, solved by the bipotential method.
-// Exit status: 0 success, 2 bad input (nothing written), 3 a solve that failed, 1 anything else.
+// Exit status: 0 success, 2 bad input (nothing written), 3 a run that failed, 128 + signal a
+// run stopped by SIGINT/SIGTERM, 1 an internal error.
 #include "rccm/app/bench.hpp"
 #include "rccm/app/compare.hpp"
-#include "rccm/io/config_reader.hpp"
-#include "rccm/base/errors.hpp"
 #include "rccm/app/simulation.hpp"
 #include "rccm/app/stop_request.hpp"
 #include "rccm/app/sweep.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/io/config_reader.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <csignal>
 #include <cstdio>
-#include <unistd.h>
 #include <filesystem>
 #include <iostream>
 #include <thread>
+#include <unistd.h>
+
+#ifndef RCCM_VERSION
+#define RCCM_VERSION "unknown"
+#endif
 
 namespace {
 
@@ -22,31 +28,61 @@ void print_totals(const rccm::RunResult& r) {
   const double per_solve = (r.wall_seconds - r.setup_seconds) / std::max(1L, r.solves.contact_solves);
   std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d)\n"
               "# wall %.3f s: setup %.4f s, %.1f us per contact solve\n",
-              r.integrator.steps, r.integrator.rejected, r.solves.contact_solves,
-              double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves), r.solves.max_sweeps, r.wall_seconds,
-              r.setup_seconds, 1e6 * per_solve);
+              r.integrator.steps, r.integrator.rejected, r.solves.contact_solves, r.solves.sweeps_per_solve(),
+              r.solves.max_sweeps, r.wall_seconds, r.setup_seconds, 1e6 * per_solve);
   for (const std::string& w : r.warnings) std::cerr << "rccm: warning: " << w << "\n";
+}
+
+/// `rccm sweep`: the cases, run in parallel; the exit status of the worst case.
+int sweep(const std::string& config_file, const std::vector<std::string>& overrides, std::string directory, int jobs,
+          bool force, const char* rccm_path) {
+  std::vector<rccm::SweepAxis> axes;
+  std::vector<std::string> fixed;
+  rccm::split_sweep_settings(overrides, axes, fixed);
+  if (axes.empty())
+    throw rccm::InputError("sweep: give at least one list, e.g. --set interface.alpha=0,0.01,0.1,1,10,100");
+  const rccm::Config cfg = rccm::load_config(config_file, fixed);
+  if (directory.empty()) directory = cfg.output.directory + "-sweep";
+  std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, directory);
+  std::filesystem::create_directories(directory);
+  std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << directory << "\n";
+  rccm::run_sweep(cases, jobs, force);
+  rccm::write_sweep_summary(std::cout, directory, axes, cases, rccm_path, config_file);
+  std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: tools/plot --overlay "
+            << directory << " " << directory << "/*/\n";
+  int status = 0;
+  for (const rccm::SweepCase& c : cases) {
+    if (c.status == rccm::CaseStatus::Interrupted || c.status == rccm::CaseStatus::NotRun) {
+      std::cerr << "rccm: sweep stopped by a signal; cases not run are marked 'not run' in summary.csv\n";
+      return 128 + rccm::stop_signal();
+    }
+    if (c.status == rccm::CaseStatus::Failed) status = 3;
+  }
+  return status;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"rccm: RCCM interface (contact, Coulomb friction, adhesion) by the bipotential method"};
+  CLI::App app{"rccm " RCCM_VERSION ": RCCM interface (contact, Coulomb friction, adhesion) by the bipotential method"};
+  app.set_version_flag("--version", "rccm " RCCM_VERSION);
   app.require_subcommand(1);
-  std::string config_file;
+  std::string config_file, output_dir;
   std::vector<std::string> overrides, integrators{"arkode", "euler"};
   bool quiet = false;
   int euler_steps = 0;
 
   CLI::App* run = app.add_subcommand("run", "run the problem of a config file");
   CLI::App* compare = app.add_subcommand("compare", "run one problem with several integrators, side by side");
-  CLI::App* sweep = app.add_subcommand(
+  CLI::App* sweep_app = app.add_subcommand(
       "sweep", "run a config for every value of listed settings (--set interface.alpha=0,0.1,1,10), in parallel");
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  std::string sweep_dir;
-  sweep->add_option("--jobs,-j", jobs, "cases run at once (default: the machine's cores)")->check(CLI::PositiveNumber);
-  sweep->add_option("--output", sweep_dir, "directory of the cases and the summary (default: <output.directory>-sweep)");
-  for (CLI::App* sub : {run, compare, sweep}) {
+  sweep_app->add_option("--jobs,-j", jobs, "cases run at once (default: the machine's cores)")
+      ->check(CLI::PositiveNumber);
+  sweep_app->add_option("--output,-o", output_dir,
+                        "directory of the cases and the summary (default: <output.directory>-sweep)");
+  run->add_option("--output,-o", output_dir, "output directory (instead of output.directory)");
+  for (CLI::App* sub : {run, compare, sweep_app}) {
     sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
     sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
   }
@@ -64,14 +100,14 @@ int main(int argc, char** argv) {
       ->check(CLI::PositiveNumber);
   bool verbose = false, force = false;
   run->add_flag("--quiet,-q", quiet, "no progress line");
-  for (CLI::App* sub : {run, sweep})
-    sub->add_flag("--force", force, "overwrite the results of an earlier run in the output directory");
+  for (CLI::App* sub : {run, sweep_app})
+    sub->add_flag("--force", force, "start afresh over the results of an earlier run in the output directory");
   run->add_flag("--verbose,-v", verbose, "one line per accepted step on stdout");
   std::string restart_dir;
-  run->add_option("--restart", restart_dir,
-                  "go on from the checkpoint of an interrupted or failed run of the same config in DIR")
-      ->excludes("--force");
-  compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, fixed")
+  CLI::Option* restart = run->add_option(
+      "--restart", restart_dir, "go on from the checkpoint of an interrupted or failed run of the same config in DIR");
+  restart->excludes("--force");
+  compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, contact-only")
       ->delimiter(',');
   compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
       ->check(CLI::PositiveNumber);
@@ -82,6 +118,8 @@ int main(int argc, char** argv) {
     return app.exit(e) == 0 ? 0 : 2;
   }
 
+  // A closed pipe (rccm run -v | head) fails the write, not the run: the files stay complete.
+  std::signal(SIGPIPE, SIG_IGN);
   try {
     if (*bench) {
       std::vector<rccm::BenchRow> rows;
@@ -105,28 +143,17 @@ int main(int argc, char** argv) {
       if (!bench_json.empty()) rccm::write_bench_json(bench_json, rows);
       return 0;
     }
-    if (*sweep) {
-      std::vector<rccm::SweepAxis> axes;
-      std::vector<std::string> fixed;
-      rccm::split_sweep_settings(overrides, axes, fixed);
-      if (axes.empty())
-        throw rccm::InputError("sweep: give at least one list, e.g. --set interface.alpha=0,0.01,0.1,1,10,100");
-      const rccm::Config cfg = rccm::load_config(config_file, fixed);
-      if (sweep_dir.empty()) sweep_dir = cfg.output.directory + "-sweep";
-      std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, sweep_dir);
-      std::filesystem::create_directories(sweep_dir);
-      std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << sweep_dir << "\n";
+    if (*sweep_app) {
       rccm::install_stop_handlers();
-      rccm::run_sweep(cases, jobs, force);
-      rccm::write_sweep_summary(std::cout, sweep_dir, cases, argv[0], config_file);
-      std::cout << "# " << sweep_dir << "/summary.csv, " << sweep_dir << "/jobs.txt; plots: tools/plot --overlay "
-                << sweep_dir << " " << sweep_dir << "/*\n";
-      for (const rccm::SweepCase& c : cases)
-        if (!c.error.empty()) return 3;
-      return 0;
+      return sweep(config_file, overrides, output_dir, jobs, force, argv[0]);
     }
-    // A restart writes where the run it continues wrote (a --set of the directory is the same).
-    if (!restart_dir.empty()) overrides.push_back("output.directory=\"" + restart_dir + "\"");
+    if (restart->count() > 0 && restart_dir.empty())
+      throw rccm::InputError("--restart: give the directory of the run to go on with, e.g. --restart results/b1");
+    if (!restart_dir.empty() && !output_dir.empty() && restart_dir != output_dir)
+      throw rccm::InputError("--restart " + restart_dir + " and -o " + output_dir + ": a restart writes where it started");
+    // A restart writes where the run it continues wrote; -o is output.directory.
+    if (!restart_dir.empty()) output_dir = restart_dir;
+    if (!output_dir.empty()) overrides.push_back("output.directory=" + output_dir);
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (*run) {
       rccm::RunOptions options;
@@ -149,8 +176,7 @@ int main(int argc, char** argv) {
     std::cerr << "rccm: error: " << e.what() << "\n";
     return 2;
   } catch (const rccm::SolveError& e) {
-    std::cerr << "rccm: run failed: " << e.what() << "\n  the results up to the last accepted step are in the "
-              << "output directory (report.txt says where it stopped)\n";
+    std::cerr << "rccm: run failed: " << e.what() << "\n";
     return 3;
   } catch (const rccm::Interrupted& e) {
     std::cerr << "rccm: " << e.what() << "; the results up to that step are complete in the output directory\n";

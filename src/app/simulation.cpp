@@ -28,11 +28,10 @@ RunResult Simulation::run() {
         integrator->advance(t_out);  // beta to t_out: one contact solve per stage, one per accepted step
       recorder.snapshot();           // the interface and the mesh at t_out
     }
-  } catch (const SolveError& e) {
-    recorder.finish(std::string("failed: ") + e.what());
-    throw;
+  } catch (const SolveError& e) {  // the files end at the last accepted step, the message says where
+    throw SolveError(e.what() + recorder.stop(std::string("failed: ") + e.what()));
   } catch (const Interrupted& e) {
-    recorder.finish(e.what());
+    recorder.stop(e.what());
     throw;
   }
   return recorder.finish();

@@ -3,13 +3,20 @@
 #include "rccm/base/errors.hpp"
 
 #include <csignal>
+#include <cstdlib>
 #include <string>
 
 namespace rccm {
 
 namespace {
 volatile std::sig_atomic_t requested = 0;
-extern "C" void on_signal(int signal) { requested = signal; }
+// The first signal asks the run to stop at its next accepted step; a second one (Ctrl-C
+// again) exits at once: the CSV lines and renamed files are complete, a file being written
+// under a temporary name is left behind as such.
+extern "C" void on_signal(int signal) {
+  if (requested) std::_Exit(128 + signal);
+  requested = signal;
+}
 }  // namespace
 
 void install_stop_handlers() {

@@ -1,14 +1,13 @@
 #include "rccm/app/sweep.hpp"
 
-#include "rccm/io/atomic_file.hpp"
+#include "rccm/app/stop_request.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/io/atomic_file.hpp"
 #include "rccm/io/config_reader.hpp"
+#include "rccm/io/csv.hpp"
 
 #include <atomic>
 #include <cstdio>
-#include <cstdlib>
-#include <filesystem>
-#include <fstream>
 #include <ostream>
 #include <thread>
 
@@ -35,7 +34,35 @@ std::vector<std::string> split_top_level(const std::string& s) {
 
 std::string leaf(const std::string& path) { return path.substr(path.rfind('.') + 1); }
 
+/// A message on one line (a CSV row per case), its line breaks and indents as single spaces.
+std::string one_line(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    const bool space = c == '\n' || c == ' ';
+    if (!space) out += c;
+    else if (!out.empty() && out.back() != ' ') out += ' ';
+  }
+  return out;
+}
+
+/// A word for a POSIX shell, in single quotes.
+std::string shell_quoted(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
 }  // namespace
+
+const char* case_status_name(CaseStatus s) {
+  switch (s) {
+    case CaseStatus::NotRun: return "not run";
+    case CaseStatus::Complete: return "complete";
+    case CaseStatus::Failed: return "failed";
+    case CaseStatus::Interrupted: return "interrupted";
+  }
+  return "";
+}
 
 void split_sweep_settings(const std::vector<std::string>& items, std::vector<SweepAxis>& axes,
                           std::vector<std::string>& fixed) {
@@ -59,6 +86,7 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
       for (const std::string& v : axis.values) {
         SweepCase n = c;
         n.name += (n.name.empty() ? "" : "_") + leaf(axis.path) + "=" + v;
+        n.values.push_back(v);
         n.overrides.push_back(axis.path + "=" + v);
         grown.push_back(n);
       }
@@ -67,12 +95,7 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
   for (SweepCase& c : cases) {
     c.overrides.insert(c.overrides.begin(), fixed.begin(), fixed.end());
     std::vector<std::string> all = c.overrides;
-    all.push_back("output.directory=\"" + directory + "/" + c.name + "\"");
-    for (const std::string& o : c.overrides)
-      if (o.rfind("interface.alpha=", 0) == 0 && std::strtod(o.c_str() + 16, nullptr) == 0.0) {
-        all.push_back("integrator.method=\"rate-independent\"");  // alpha = 0: the limit (docs/MODEL.md s3)
-        c.overrides.push_back(all.back());
-      }
+    all.push_back("output.directory=" + directory + "/" + c.name);
     c.config = load_config(config_file, all);
   }
   return cases;
@@ -81,14 +104,21 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
-    for (std::size_t k = next++; k < cases.size(); k = next++) {
+    for (std::size_t k = next++; k < cases.size() && !stop_signal(); k = next++) {
       RunOptions options;
       options.write_files = true;
       options.force = force;
+      SweepCase& c = cases[k];
       try {
-        cases[k].result = Simulation(cases[k].config, options).run();
+        c.result = Simulation(c.config, options).run();
+        c.status = CaseStatus::Complete;
+      } catch (const Interrupted& e) {
+        c.status = CaseStatus::Interrupted;
+        c.error = e.what();
+        c.signal = e.signal;
       } catch (const std::exception& e) {
-        cases[k].error = e.what();
+        c.status = CaseStatus::Failed;
+        c.error = e.what();
       }
     }
   };
@@ -97,42 +127,60 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   for (std::thread& t : pool) t.join();
 }
 
-void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepCase>& cases,
-                         const std::string& rccm_path, const std::string& config_file) {
+void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
+                         const std::vector<SweepCase>& cases, const std::string& rccm_path,
+                         const std::string& config_file) {
+  // The output times are those of the config (every case has the same unless a case sweeps them).
+  std::vector<double> times = cases.front().config.output.times;
+  times.push_back(cases.front().config.time.T);
+  std::vector<std::string> header = {"case"};
+  for (const SweepAxis& a : axes) header.push_back(a.path);
+  header.insert(header.end(), {"status", "peak force [N]", "t at peak [s]"});
+  for (double t : times) header.push_back("debonded at t=" + csv_number(t) + " [mm]");
+  header.insert(header.end(), {"damage dissipation [N mm]", "friction dissipation [N mm]",
+                               "energy imbalance (relative)", "steps", "wall [s]", "message"});
+
   AtomicFile csv_file(directory + "/summary.csv"), jobs_file(directory + "/jobs.txt");
-  std::ostream &csv = csv_file.stream(), &jobs = jobs_file.stream();
-  csv << "case,peak force [N],t at peak [s]";
-  out << "case                          peak force [N]  t peak [s]";
-  for (const Snapshot& s : cases.front().result.snapshots) {
-    csv << ",debonded at t=" << s.t << " [mm]";
-    char h[40];
-    std::snprintf(h, sizeof h, "  debond@%-6g", s.t);
-    out << h;
+  csv_file.stream() << csv_line(header) << "\n";
+  // The table: the same figures, "-" where a case did not complete.
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%-28s %-12s", "case", "status");
+  out << buf;
+  for (std::size_t k = axes.size() + 2; k + 1 < header.size(); ++k) {
+    std::snprintf(buf, sizeof buf, " %14.14s", header[k].c_str());
+    out << buf;
   }
-  csv << ",damage dissipation [N mm],friction dissipation [N mm],energy imbalance (relative),steps,wall [s],error\n";
-  out << "  damage diss.  friction diss.  energy err   wall [s]\n";
-  char buf[128];
+  out << "\n";
   for (const SweepCase& c : cases) {
     const RunResult& r = c.result;
-    const double peak = r.peak_force.empty() ? 0.0 : r.peak_force[0], tp = r.peak_time.empty() ? 0.0 : r.peak_time[0];
-    csv << c.name << "," << peak << "," << tp;
-    std::snprintf(buf, sizeof buf, "%-28s %15.6g %11.4g", c.name.c_str(), peak, tp);
-    out << buf;
-    for (const Snapshot& s : r.snapshots) {
-      csv << "," << s.debonded_length;
-      std::snprintf(buf, sizeof buf, "  %12.4g", s.debonded_length);
-      out << buf;
+    const bool complete = c.status == CaseStatus::Complete;
+    std::vector<std::string> row = {c.name};
+    row.insert(row.end(), c.values.begin(), c.values.end());
+    row.push_back(case_status_name(c.status));
+    std::vector<double> figures;
+    if (complete) {
+      figures = {r.peak_force.empty() ? 0.0 : r.peak_force[0], r.peak_time.empty() ? 0.0 : r.peak_time[0]};
+      for (std::size_t k = 0; k < times.size(); ++k)
+        figures.push_back(k < r.snapshots.size() ? r.snapshots[k].debonded_length : 0.0);
+      figures.insert(figures.end(), {r.energy.damage_dissipation, r.energy.friction_dissipation,
+                                     r.energy.relative_error(), double(r.integrator.steps), r.wall_seconds});
     }
-    csv << "," << r.energy.damage_dissipation << "," << r.energy.friction_dissipation << ","
-        << r.energy.relative_error() << "," << r.integrator.steps << "," << r.wall_seconds << ","
-        << (c.error.empty() ? "" : "\"failed\"") << "\n";
-    std::snprintf(buf, sizeof buf, "  %12.5g  %14.5g  %10.2e %10.3f", r.energy.damage_dissipation,
-                  r.energy.friction_dissipation, r.energy.relative_error(), r.wall_seconds);
-    out << buf << (c.error.empty() ? "" : "   FAILED: " + c.error) << "\n";
+    const std::size_t cells = 2 + times.size() + 5;
+    for (std::size_t k = 0; k < cells; ++k) row.push_back(complete ? csv_number(figures[k]) : "");
+    row.push_back(one_line(c.error));
+    csv_file.stream() << csv_line(row) << "\n";
 
-    jobs << rccm_path << " run " << config_file << " -q";
-    for (const std::string& o : c.overrides) jobs << " --set '" << o << "'";
-    jobs << " --set 'output.directory=\"" << directory << "/" << c.name << "\"'\n";
+    std::snprintf(buf, sizeof buf, "%-28s %-12s", c.name.c_str(), case_status_name(c.status));
+    out << buf;
+    for (std::size_t k = 0; k < cells; ++k) {
+      if (complete) std::snprintf(buf, sizeof buf, " %14.6g", figures[k]);
+      out << (complete ? std::string(buf) : std::string(14, ' ') + "-");
+    }
+    out << (c.error.empty() ? "" : "   " + one_line(c.error)) << "\n";
+
+    jobs_file.stream() << shell_quoted(rccm_path) << " run " << shell_quoted(config_file) << " -q";
+    for (const std::string& o : c.overrides) jobs_file.stream() << " --set " << shell_quoted(o);
+    jobs_file.stream() << " -o " << shell_quoted(directory + "/" + c.name) << "\n";
   }
   csv_file.commit();
   jobs_file.commit();

@@ -42,6 +42,15 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
     }
     out.push_back(std::move(lc));
   }
+  // A force on a prescribed DOF would act on the support, not on the body: refused.
+  for (std::size_t k = 0; k < out.size(); ++k)
+    if (cfg.loads[k].kind != LoadKind::Displacement)
+      for (int dof : out[k].dofs)
+        if (owner[dof] >= 0)
+          throw InputError(cfg.where(cfg.loads[k].path + ".node_set") + ": node " + std::to_string(dof / mesh.dim) +
+                           " component " + "xyz"[dof % mesh.dim] + " is prescribed by loads.[" +
+                           std::to_string(owner[dof]) + "]: a force there acts on the support, not on the body; "
+                           "load another node set, or drop one of the two loads");
   return out;
 }
 

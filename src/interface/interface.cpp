@@ -2,6 +2,8 @@
 
 #include "rccm/base/errors.hpp"
 
+#include <sstream>
+
 namespace rccm {
 
 namespace {
@@ -32,11 +34,23 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
     }
     if (nodes.empty()) throw InputError(where + "node set '" + p.boundary + "' has no nodes");
     const std::vector<double> a = mesh.tributary_measures(nodes);
+    const std::vector<Eigen::Vector3d> outward = mesh.outward_normals(nodes);
     const FlatFoundation foundation{Eigen::Vector3d(p.normal[0], p.normal[1], 0.0).normalized()};
     for (std::size_t k = 0; k < nodes.size(); ++k) {
       if (a[k] <= 0)
         throw InputError(where + "node set '" + p.boundary + "' must be a chain of boundary edges (node " +
                          std::to_string(nodes[k]) + " lies on none of its edges)");
+      // The foundation's normal points into the body: against the boundary's outward normal
+      // (within 60 degrees), not out of the body nor along the interface.
+      if (-foundation.normal.dot(outward[k]) < 0.5) {
+        const Eigen::Vector3d& x = mesh.nodes[nodes[k]];
+        std::ostringstream m;
+        m << cfg.where(p.path + ".normal") << ": the foundation normal (" << foundation.normal.x() << ", "
+          << foundation.normal.y() << ") does not point into the body at contact node " << k << " (" << x.x() << ", "
+          << x.y() << "), where the boundary's inward normal is (" << -outward[k].x() << ", " << -outward[k].y()
+          << "); give the normal from the foundation into the body";
+        throw InputError(m.str());
+      }
       ContactPair c;
       c.node = nodes[k];
       c.measure = a[k];

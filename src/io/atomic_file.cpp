@@ -2,12 +2,14 @@
 
 #include "rccm/base/errors.hpp"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 
 namespace rccm {
 
 AtomicFile::AtomicFile(std::string path) : path_(std::move(path)), temporary_(path_ + ".tmp"), out_(temporary_) {
-  if (!out_) throw SolveError("cannot write " + temporary_);
+  if (!out_) throw WriteError("cannot write " + temporary_ + " (" + std::strerror(errno) + ")");
 }
 
 AtomicFile::~AtomicFile() {
@@ -17,7 +19,7 @@ AtomicFile::~AtomicFile() {
 void AtomicFile::commit() {
   out_.close();
   if (!out_ || std::rename(temporary_.c_str(), path_.c_str()) != 0)
-    throw SolveError("cannot write " + path_ + " (disk full or directory removed?)");
+    throw WriteError("cannot write " + path_ + " (" + std::strerror(errno) + ")");
   committed_ = true;
 }
 

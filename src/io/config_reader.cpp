@@ -3,12 +3,18 @@
 #include "rccm/io/config_reader.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/memory.hpp"
 #include "rccm/base/suggest.hpp"
+#include "rccm/io/csv.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/time/arkode_integrator.hpp"
 
 #include <libconfig.h++>
 
 #include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -199,52 +205,107 @@ std::string syntax_hint(const std::string& error) {
   return error;
 }
 
-/// Applies one "--set path=value"; the value is parsed by libconfig itself. A path part
-/// [k] selects the k-th element of a list (loads.[0].value).
+/// libconfig 1.5 reads an integer literal beyond 32 bits without an L suffix as garbage
+/// (100000000000000000000 becomes -1, 4294967296 becomes 0): every integer literal of the
+/// text outside strings and comments is checked first. `where(line)` names its place.
+void check_integer_literals(const std::string& text, const std::function<std::string(int)>& where) {
+  int line = 1;
+  for (std::size_t k = 0; k < text.size(); ++k) {
+    const char c = text[k];
+    if (c == '\n') ++line;
+    if (c == '"') {  // a string: to its closing quote (\" escapes)
+      for (++k; k < text.size() && text[k] != '"'; ++k) {
+        if (text[k] == '\\') ++k;
+        else if (text[k] == '\n') ++line;
+      }
+    } else if (c == '#' || (c == '/' && k + 1 < text.size() && text[k + 1] == '/')) {
+      while (k < text.size() && text[k] != '\n') ++k;
+      --k;
+    } else if (c == '/' && k + 1 < text.size() && text[k + 1] == '*') {
+      for (k += 2; k + 1 < text.size() && !(text[k] == '*' && text[k + 1] == '/'); ++k)
+        if (text[k] == '\n') ++line;
+      ++k;
+    } else if (std::isdigit(static_cast<unsigned char>(c)) &&
+               (k == 0 || !(std::isalnum(static_cast<unsigned char>(text[k - 1])) || text[k - 1] == '.' ||
+                            text[k - 1] == '_'))) {
+      std::size_t end = k;
+      while (end < text.size() && std::isalnum(static_cast<unsigned char>(text[end]))) ++end;
+      const std::string token = text.substr(k, end - k);
+      const bool decimal_integer =
+          std::all_of(token.begin(), token.end(), [](unsigned char ch) { return std::isdigit(ch); }) &&
+          (end >= text.size() || text[end] != '.');
+      if (decimal_integer) {
+        const bool negative = k > 0 && text[k - 1] == '-';
+        // Beyond 2^31 - 1 (or 2^31 negative): compare as digit strings, no overflow.
+        const std::string limit = negative ? "2147483648" : "2147483647";
+        const std::string digits = token.substr(std::min(token.find_first_not_of('0'), token.size() - 1));
+        if (digits.size() > limit.size() || (digits.size() == limit.size() && digits > limit))
+          throw InputError(where(line) + ": the integer " + (negative ? "-" : "") + token +
+                           " is beyond what libconfig reads (2147483647); write it as a number: " +
+                           (negative ? "-" : "") + token + ".0");
+      }
+      k = end - 1;
+    }
+  }
+}
+
+/// A setting name of a --set path: letters, digits, '_', '-', '*', starting with a letter.
+bool setting_name(const std::string& part) {
+  return !part.empty() && std::isalpha(static_cast<unsigned char>(part[0])) &&
+         std::all_of(part.begin(), part.end(),
+                     [](unsigned char ch) { return std::isalnum(ch) || ch == '_' || ch == '-' || ch == '*'; });
+}
+
+/// Applies one "--set path=value"; the value is parsed by libconfig itself, and a value that
+/// is no libconfig value (output.directory=/tmp/x, solver.form=jacobi) is a string: the
+/// shell has eaten its quotes. A path part [k] selects the k-th element of a list
+/// (loads.[0].value).
 void apply_override(libconfig::Config& cfg, const std::string& item) {
   const auto eq = item.find('=');
   if (eq == std::string::npos || eq == 0)
     throw InputError("--set " + item + ": expected path=value, e.g. interface.alpha=0.1");
-  const std::string path = item.substr(0, eq);
-  std::string text = item.substr(eq + 1);
-  // A bare word (solver.form=jacobi) is a string: the shell has eaten the quotes.
-  const bool bare_word = !text.empty() && std::isalpha(static_cast<unsigned char>(text[0])) &&
-                         std::all_of(text.begin(), text.end(), [](unsigned char ch) {
-                           return std::isalnum(ch) || ch == '-' || ch == '_';
-                         }) &&
-                         text != "true" && text != "false";
-  if (bare_word) text = "\"" + text + "\"";
+  const std::string path = item.substr(0, eq), given = item.substr(eq + 1);
+  const auto fail = [&](const std::string& what) -> InputError { return InputError("--set " + path + ": " + what); };
+  check_integer_literals(given, [&](int) { return "--set " + path; });
   libconfig::Config value;
+  value.setAutoConvert(true);
+  const bool structured = !given.empty() && std::string("[({\"").find(given[0]) != std::string::npos;
   try {
-    value.readString("v = " + text + ";");
+    value.readString("v = " + given + ";");
   } catch (const libconfig::ParseException& e) {
-    throw InputError("--set " + path + ": cannot parse the value '" + item.substr(eq + 1) +
-                     "' (" + syntax_hint(e.getError()) + ")");
+    if (structured || given.empty())
+      throw fail("cannot parse the value '" + given + "' (" + syntax_hint(e.getError()) + ")");
+    std::string quoted = "\"";
+    for (char c : given) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+    value.readString("v = " + quoted + "\";");
+  }
+  std::vector<std::string> parts(1);
+  for (char c : path) {
+    if (c == '.') parts.emplace_back();
+    else parts.back().push_back(c);
   }
   Setting* parent = &cfg.getRoot();
-  std::size_t start = 0;
-  for (auto dot = path.find('.'); dot != std::string::npos; dot = path.find('.', start)) {
-    const std::string part = path.substr(start, dot - start);
+  for (std::size_t k = 0; k + 1 < parts.size(); ++k) {
+    const std::string& part = parts[k];
     if (part.size() > 2 && part.front() == '[' && part.back() == ']') {  // loads.[0].value: a list element
       const std::string digits = part.substr(1, part.size() - 2);
       const bool number = std::all_of(digits.begin(), digits.end(), [](unsigned char ch) { return std::isdigit(ch); });
-      if (!parent->isList()) throw InputError("--set " + path + ": '" + part + "' indexes a list; the setting before it is not one");
-      if (!number || std::stoul(digits) >= static_cast<unsigned long>(parent->getLength()))
-        throw InputError("--set " + path + ": '" + part + "': the list has " + std::to_string(parent->getLength()) +
-                         " element(s), numbered from 0");
-      parent = &(*parent)[static_cast<int>(std::stoul(digits))];
+      if (!parent->isList()) throw fail("'" + part + "' indexes a list; the setting before it is not one");
+      if (!number || digits.size() > 9 || std::stol(digits) >= parent->getLength())
+        throw fail("'" + part + "': the list has " + std::to_string(parent->getLength()) + " element(s), numbered from 0");
+      parent = &(*parent)[static_cast<int>(std::stol(digits))];
     } else {
-      if (!parent->isGroup()) throw InputError("--set " + path + ": '" + part + "' must follow a group");
+      if (!setting_name(part)) throw fail("'" + part + "' is not a setting name (letters, digits and '_', from a letter)");
+      if (!parent->isGroup()) throw fail("'" + part + "' must follow a group");
       if (!parent->exists(part)) parent->add(part, Setting::TypeGroup);
       parent = &(*parent)[part.c_str()];
     }
-    if (!parent->isGroup() && !parent->isList())
-      throw InputError("--set " + path + ": '" + part + "' is not a group or a list");
-    start = dot + 1;
+    if (!parent->isGroup() && !parent->isList()) throw fail("'" + part + "' is not a group or a list");
   }
-  if (!parent->isGroup())
-    throw InputError("--set " + path + ": a list element is set by its index, e.g. loads.[0].value");
-  copy_value(value.lookup("v"), *parent, path.substr(start));
+  if (!setting_name(parts.back()))
+    throw fail("'" + parts.back() + "' is not a setting name (letters, digits and '_', from a letter)");
+  if (!parent->isGroup()) throw fail("a list element is set by its index, e.g. loads.[0].value");
+  copy_value(value.lookup("v"), *parent, parts.back());
 }
 
 TimeFunction read_amplitude(const Reader& r, const Setting& load, double T) {
@@ -278,6 +339,17 @@ MeshParams read_mesh(const Reader& r, const Setting& root) {
   r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
   r.check(p.ny >= 1, m["ny"], "must be >= 1", p.ny);
   p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
+  for (int k = 0; k < 2; ++k)
+    r.check(std::abs(p.origin[k]) + p.size[k] < 1e15, m["size"], "the rectangle must lie within 1e15 mm of 0",
+            p.size[k]);
+  // The assembly's triplets, the matrix and its Cholesky factor (~2.6 kB per unknown at a
+  // million unknowns, measured): refused up front rather than failing after minutes.
+  const double nodes = (p.nx + 1.0) * (p.ny + 1.0), dofs = 2 * nodes;
+  const double bytes = dofs * (600 + 100 * std::log2(std::max(dofs, 2.0)));
+  if (bytes > available_memory())
+    r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + " mesh (" + csv_number(dofs) +
+                        " unknowns) needs about " + csv_number(bytes / 1e9) + " GB, the machine has " +
+                        csv_number(available_memory() / 1e9) + " GB available; use fewer cells");
   p.rotation = r.number(m, "rotation", 0.0);
   if (m.exists("node_sets")) {
     const Setting& sets = m["node_sets"];
@@ -333,6 +405,7 @@ InterfaceParams read_interface(const Reader& r, const Setting& in) {
   if (in.exists("alpha")) r.check(p.alpha >= 0, in["alpha"], "must be >= 0", p.alpha);
   p.mu = r.number(in, "mu");
   r.check(p.mu >= 0, in["mu"], "must be >= 0", p.mu);
+  r.check(p.mu <= 10, in["mu"], "must be at most 10 (friction coefficients of real interfaces are below 2)", p.mu);
   if (in.exists("beta0")) {
     p.beta0 = r.numbers(in["beta0"]);
     if (p.beta0.empty()) r.fail(in["beta0"], "must not be empty");
@@ -352,8 +425,13 @@ TimeParams read_time(const Reader& r, const Setting& root) {
   TimeParams p;
   p.T = r.number(t, "T");
   r.check(p.T > 0, t["T"], "must be > 0", p.T);
+  r.check(p.T <= 1e15, t["T"], "must be at most 1e15 s (the steps of a longer run are below round-off)", p.T);
   p.steps = r.integer(t, "steps", p.steps);
   if (t.exists("steps")) r.check(p.steps >= 1, t["steps"], "must be >= 1", p.steps);
+  // Each fixed step keeps its time and a record of its work (64 bytes).
+  if (64.0 * p.steps > available_memory())
+    r.fail(t["steps"], std::to_string(p.steps) + " steps need about " + csv_number(64e-9 * p.steps) +
+                           " GB, the machine has " + csv_number(available_memory() / 1e9) + " GB available");
   return p;
 }
 
@@ -438,7 +516,7 @@ OutputParams read_output(const Reader& r, const Setting& root, double T) {
   OutputParams O;
   const Setting* o = r.optional_group(root, "output");
   if (!o) return O;
-  r.only(*o, {"directory", "times", "watch", "checkpoint_steps"});
+  r.only(*o, {"directory", "times", "watch", "probes", "checkpoint_steps"});
   O.checkpoint_steps = r.integer(*o, "checkpoint_steps", O.checkpoint_steps);
   if (o->exists("checkpoint_steps"))
     r.check(O.checkpoint_steps >= 0, (*o)["checkpoint_steps"], "must be >= 0 (0: a checkpoint only when the run stops)",
@@ -450,29 +528,52 @@ OutputParams read_output(const Reader& r, const Setting& root, double T) {
     for (double tt : O.times) r.check(tt >= 0 && tt <= T, (*o)["times"], "must be in [0, time.T]", tt);
     std::sort(O.times.begin(), O.times.end());
   }
-  if (o->exists("watch")) {
-    const Setting& ws = (*o)["watch"];
+  std::vector<std::string> names;  // watch points and probes name columns: one name once
+  for (const char* list : {"watch", "probes"}) {
+    if (!o->exists(list)) continue;
+    const Setting& ws = (*o)[list];
     if (!ws.isList()) r.fail(ws, "must be a list ( { name = \"B\"; point = [x, y]; }, ... )");
     for (int i = 0; i < ws.getLength(); ++i) {
       if (!ws[i].isGroup()) r.fail(ws[i], "must be a group { name = ...; point = [x, y]; }");
       r.only(ws[i], {"name", "point"});
-      O.watch.push_back({r.text(ws[i], "name", "", true), r.fixed<2>(ws[i], "point")});
+      const NamedPoint p{r.text(ws[i], "name", "", true), r.fixed<2>(ws[i], "point")};
+      if (p.name.empty()) r.fail(ws[i]["name"], "must not be empty (it names the columns of history.csv)");
+      if (std::any_of(p.name.begin(), p.name.end(), [](unsigned char c) { return std::iscntrl(c); }))
+        r.fail(ws[i]["name"], "must not hold control characters (tabs, line breaks)");
+      if (std::find(names.begin(), names.end(), p.name) != names.end())
+        r.fail(ws[i]["name"], "'" + p.name + "' names another watch point or probe already");
+      names.push_back(p.name);
+      (std::string(list) == "watch" ? O.watch : O.probes).push_back(p);
     }
   }
   return O;
 }
 
 /// Rules across sections.
-void check_consistency(const Reader& r, const Setting& root, const Config& c) {
-  const bool viscous = c.integrator.method == Method::Arkode || c.integrator.method == Method::Euler;
+void check_consistency(const Reader& r, const Setting& root, Config& c) {
+  // alpha = 0 is the rate-independent limit (docs/MODEL.md s3), whatever integrator.method
+  // says (a viscous method needs alpha > 0): one rule for `rccm run`, `sweep` and `compare`.
+  std::size_t zero = 0;
+  for (const InterfaceParams& p : c.interfaces) zero += p.alpha == 0;
+  if (zero == c.interfaces.size()) c.integrator.method = Method::RateIndependent;
   for (const InterfaceParams& p : c.interfaces) {
-    if (viscous && !(p.alpha > 0)) {
-      const Setting& in = root.lookup(p.path);
+    const Setting& in = root.lookup(p.path);
+    if (zero > 0 && zero < c.interfaces.size() && p.alpha == 0)
       r.fail(in.exists("alpha") ? in["alpha"] : in,
-             std::string("must be > 0 for integrator.method = \"") + method_name(c.integrator.method) + "\" (got " +
-                 std::to_string(p.alpha) + "); alpha = 0 is method \"rate-independent\"");
-    }
+             "alpha = 0 (the rate-independent limit) on some interfaces only: give every interface alpha > 0, or "
+             "every one alpha = 0");
   }
+  const Setting* integrator = root.exists("integrator") ? &root["integrator"] : nullptr;
+  const IntegratorParams& A = c.integrator;
+  if (A.min_step > 0 && A.max_step > 0 && A.min_step > A.max_step)
+    r.fail((*integrator)["min_step"], "must not exceed integrator.max_step (" + std::to_string(A.max_step) + " s)");
+  if (A.fixed_step > c.time.T) r.fail((*integrator)["fixed_step"], "must not exceed time.T");
+  if (!A.table.empty() && !arkode_table_exists(A.scheme == ArkodeScheme::Dirk, A.table))
+    r.fail((*integrator)["table"], "no " + std::string(A.scheme == ArkodeScheme::Dirk ? "DIRK" : "ERK") +
+                                       " table of ARKODE is named '" + A.table + "' (e.g. " +
+                                       (A.scheme == ArkodeScheme::Dirk ? "ARKODE_SDIRK_5_3_4" : "ARKODE_ZONNEVELD_5_3_4") +
+                                       "; SUNDIALS' arkode_butcher_" + (A.scheme == ArkodeScheme::Dirk ? "dirk" : "erk") +
+                                       ".h lists them)");
 }
 
 Config read(const Reader& r, const Setting& root, const std::string& path) {
@@ -552,9 +653,44 @@ InputError syntax_error(const libconfig::ParseException& e, const std::string& p
 
 }  // namespace
 
+namespace {
+
+/// Checks a config file and the files it includes before libconfig reads them: integer
+/// literals (check_integer_literals) and @include lines, which name a file relative to the
+/// directory of the top config (libconfig's include directory).
+void check_config_file(const std::string& path, const std::string& include_dir, int depth = 0) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read the file (does it exist?)");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  check_integer_literals(text, [&](int line) { return path + ":" + std::to_string(line); });
+  std::istringstream lines(text);
+  int n = 0;
+  for (std::string line; std::getline(lines, line);) {
+    ++n;
+    const std::size_t at = line.find_first_not_of(" \t");
+    if (at == std::string::npos || line.compare(at, 8, "@include") != 0) continue;
+    const std::size_t open = line.find('"', at), close = line.find('"', open + 1);
+    if (open == std::string::npos || close == std::string::npos)
+      throw InputError(path + ":" + std::to_string(n) + ": @include needs a file name in quotes");
+    const std::string name = line.substr(open + 1, close - open - 1);
+    const std::string included = !name.empty() && name[0] == '/' ? name : include_dir + "/" + name;
+    if (depth > 8) throw InputError(path + ":" + std::to_string(n) + ": @include \"" + name + "\": nested too deep (a loop?)");
+    if (!std::ifstream(included))
+      throw InputError(path + ":" + std::to_string(n) + ": @include \"" + name + "\": cannot read " + included +
+                       " (included files are found relative to the directory of " + "the config file)");
+    check_config_file(included, include_dir, depth + 1);
+  }
+}
+
+}  // namespace
+
 Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
+  const std::string dir = std::filesystem::path(path).parent_path().string();
+  const std::string include_dir = dir.empty() ? "." : dir;
+  check_config_file(path, include_dir);
   libconfig::Config cfg;
   cfg.setAutoConvert(true);
+  cfg.setIncludeDir(include_dir.c_str());
   try {
     cfg.readFile(path.c_str());
   } catch (const libconfig::FileIOException&) {
@@ -566,6 +702,7 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
 }
 
 Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  check_integer_literals(text, [&](int line) { return name + ":" + std::to_string(line); });
   libconfig::Config cfg;
   cfg.setAutoConvert(true);
   try {

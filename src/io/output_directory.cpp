@@ -17,6 +17,20 @@ namespace {
 // The files that mark a directory as holding a run's results.
 const char* const result_marks[] = {"history.csv", "report.txt", "results.pvd"};
 
+/// Whether a file name is one rccm writes into an output directory (or tools/plot's plots/).
+bool result_file(const std::string& name) {
+  const auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
+  const auto ends = [&](const char* p) {
+    const std::string e(p);
+    return name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
+  };
+  for (const char* f : {"history.csv", "curves.csv", "report.txt", "report.json", "results.pvd", "interface.pvd",
+                        "checkpoint.txt", "plots"})
+    if (name == f) return true;
+  return (starts("interface_t") && ends(".csv")) || (starts("mesh_") && ends(".vtu")) ||
+         (starts("interface_") && ends(".vtp")) || ends(".tmp");
+}
+
 /// Whether a file can be created in `dir` (a probe created and removed at once: permissions,
 /// a read-only file system and /proc all answer, also for root).
 bool writable(const fs::path& dir) {
@@ -49,7 +63,7 @@ void check_output_directory(const Config& cfg, bool force) {
     throw InputError(where + ": cannot create '" + dir.string() + "' ('" + parent.string() + "' is not a writable directory)");
 }
 
-OutputDirectory::OutputDirectory(const Config& cfg) : path_(cfg.output.directory) {
+OutputDirectory::OutputDirectory(const Config& cfg, bool fresh) : path_(cfg.output.directory) {
   const std::string where = cfg.where("output.directory");
   std::error_code ec;
   fs::create_directories(path_, ec);
@@ -62,6 +76,9 @@ OutputDirectory::OutputDirectory(const Config& cfg) : path_(cfg.output.directory
     ::close(lock_fd_);
     throw InputError(where + ": another rccm run is writing into '" + path_ + "' now; wait for it, or choose another directory");
   }
+  if (!fresh) return;
+  for (const auto& entry : fs::directory_iterator(path_, ec))
+    if (result_file(entry.path().filename().string())) fs::remove_all(entry.path(), ec);
 }
 
 OutputDirectory::~OutputDirectory() {

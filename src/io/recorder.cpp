@@ -1,5 +1,6 @@
 #include "rccm/io/recorder.hpp"
 
+#include "rccm/io/csv.hpp"
 #include "rccm/io/run_report.hpp"
 
 #include <cmath>
@@ -50,7 +51,7 @@ void Recorder::open(const Model& model) {
                        << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
                        << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
   if (!options_.write_files) return;
-  directory_ = std::make_unique<OutputDirectory>(cfg_);
+  directory_ = std::make_unique<OutputDirectory>(cfg_, options_.force);
   ResumePoint point;
   if (resume_) {
     point.t = resume_->state.t;
@@ -124,14 +125,26 @@ bool Recorder::has_snapshot(double t_out) const {
 
 void Recorder::snapshot() {
   const InterfaceState& s = ode_->committed();
-  double debonded = 0;
-  for (int i = 0; i < model_->contact_nodes(); ++i)
-    if (s.beta[i] < 0.5) debonded += model_->interface().pairs[i].measure;
-  result_.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded});
+  result_.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded_length(*model_, s.beta)});
   if (writer_) writer_->output(s, body_);  // the last accepted step is the one at s.t
 }
 
-RunResult Recorder::finish(const std::string& stopped) {
+RunResult Recorder::finish() { return close(""); }
+
+std::string Recorder::stop(const std::string& why) {
+  if (!ode_ || !integrator_) return "";
+  try {
+    close(why);
+  } catch (const std::exception& e) {
+    return "\n  the report could not be written (" + std::string(e.what()) + "); the CSV files hold every step "
+           "written before";
+  }
+  if (!writer_) return "";
+  return "\n  the results up to the last accepted step (t = " + csv_number(ode_->committed().t) + " s) are in " +
+         writer_->directory() + "; report.txt says where the run stopped, checkpoint.txt restarts it (--restart)";
+}
+
+RunResult Recorder::close(const std::string& stopped) {
   // The restart point: the last accepted state, before a stopped run's extra snapshot of it.
   if (writer_) save_checkpoint();
   result_.stopped = stopped;

@@ -1,74 +1,31 @@
 #include "rccm/io/result_writer.hpp"
 
-#include "rccm/io/atomic_file.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/io/atomic_file.hpp"
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
-#include <sstream>
 
 namespace rccm {
 
 namespace {
 
-/// Writes a value with enough digits to read back what was computed (to 1e-10): the first
-/// cell of a line, then ",value" cells.
-void first_cell(std::ostream& out, double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.12g", v);
-  out << buf;
-}
-void cell(std::ostream& out, double v) { first_cell(out << ",", v); }
-
 std::string load_label(const Config& cfg, std::size_t k) {
   const LoadParams& p = cfg.loads[k];
-  return "L" + std::to_string(k) + " " + p.node_set + "." + "xy"[p.component];
+  return "L" + std::to_string(k) + " " + p.node_set + "." + "xyz"[p.component];
 }
 
 const char* load_unit(LoadKind kind) {
   switch (kind) {
     case LoadKind::Displacement: return "mm";
     case LoadKind::Force: return "N";
-    default: return "MPa";
+    case LoadKind::Traction: return "MPa";
   }
+  return "";
 }
 
-std::ofstream open(const std::string& path, std::ios::openmode mode = std::ios::out) {
-  std::ofstream out(path, mode);
-  if (!out) throw InputError("output.directory: cannot write " + path);
-  return out;
-}
-
-std::string interface_file(double t) {
-  char name[64];
-  std::snprintf(name, sizeof name, "interface_t%.12g.csv", t);  // the time as in history.csv
-  return name;
-}
-
-/// Keeps the header and the complete lines of a CSV stream up to time t (its first field).
-void keep_lines_until(const std::string& path, double t) {
-  std::ifstream in(path);
-  std::string header, line;
-  std::getline(in, header);
-  const auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ','); };
-  AtomicFile file(path);
-  file.stream() << header << "\n";
-  const double eps = 1e-9 * std::max(1.0, std::abs(t));
-  while (std::getline(in, line) && fields(line) == fields(header) && std::strtod(line.c_str(), nullptr) <= t + eps)
-    file.stream() << line << "\n";
-  file.commit();
-}
-
-/// Appends one complete line with a single write, so that a reader never sees half of it.
-void write_line(std::ofstream& out, const std::ostringstream& line) {
-  const std::string text = line.str() + "\n";
-  out.write(text.data(), static_cast<std::streamsize>(text.size()));
-  out.flush();
-  if (!out) throw SolveError("cannot append to a result file (disk full?)");
-}
+std::string interface_file(double t) { return "interface_t" + csv_number(t) + ".csv"; }  // the time as in history.csv
 
 /// The labels of a pair's local components in column names, normal first: n, t (2D) or n, t1, t2 (3D).
 std::vector<std::string> component_labels(int dim) {
@@ -83,76 +40,96 @@ std::vector<double> normal_first(const Layout& L, const Eigen::VectorXd& v, int 
   return out;
 }
 
+std::vector<std::string> history_header(const Config& cfg, int dim) {
+  std::vector<std::string> h = {"t [s]",    "dt [s]", "contact solves", "sweeps mean",          "sweeps max",
+                                "residual", "min beta", "stick",       "slide",       "separated",
+                                "equilibrium residual", "step wall [s]"};
+  for (const NamedPoint& w : cfg.output.watch) {
+    h.push_back(w.name + " beta");
+    for (const char* q : {"u", "Radh", "Rbar"})
+      for (const std::string& c : component_labels(dim))
+        h.push_back(w.name + " " + q + "_" + c + (q[0] == 'u' ? " [mm]" : " [N]"));
+  }
+  for (const NamedPoint& p : cfg.output.probes)
+    for (int c = 0; c < dim; ++c) h.push_back(p.name + " u_" + "xyz"[c] + " [mm]");
+  return h;
+}
+
+std::vector<std::string> curves_header(const Config& cfg) {
+  std::vector<std::string> h = {"t [s]"};
+  for (std::size_t k = 0; k < cfg.loads.size(); ++k) {
+    h.push_back(load_label(cfg, k) + " value [" + load_unit(cfg.loads[k].kind) + "]");
+    h.push_back(load_label(cfg, k) + " force [N]");
+    h.push_back(load_label(cfg, k) + " displacement [mm]");
+  }
+  for (const char* q : {"debonded length [mm]", "external work [N mm]", "strain energy [N mm]",
+                        "interface free energy change [N mm]", "damage dissipation [N mm]",
+                        "friction dissipation [N mm]", "normal contact work [N mm]", "imbalance [N mm]"})
+    h.push_back(q);
+  return h;
+}
+
 }  // namespace
+
+double debonded_length(const Model& model, const Eigen::VectorXd& beta) {
+  double length = 0;
+  for (int i = 0; i < model.contact_nodes(); ++i)
+    if (beta[i] < 0.5) length += model.interface().pairs[i].measure;
+  return length;
+}
 
 ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::string& directory,
                            const ResumePoint* resume)
     : model_(model), cfg_(cfg), directory_(directory), vtk_(model, directory) {
-  if (resume) {
-    keep_lines_until(directory + "/history.csv", resume->t);
-    keep_lines_until(directory + "/curves.csv", resume->t);
-    history_ = open(directory + "/history.csv", std::ios::app);
-    curves_ = open(directory + "/curves.csv", std::ios::app);
-    std::vector<std::string> keep;
-    for (double t : resume->output_times) keep.push_back(interface_file(t));
-    for (const auto& entry : std::filesystem::directory_iterator(directory)) {
-      const std::string name = entry.path().filename().string();
-      if (name.rfind("interface_t", 0) == 0 && std::find(keep.begin(), keep.end(), name) == keep.end())
-        std::filesystem::remove(entry.path());
-    }
-    vtk_.resume(resume->output_times);
+  const std::string history = directory + "/history.csv", curves = directory + "/curves.csv";
+  if (!resume) {
+    history_ = std::make_unique<CsvStream>(history, history_header(cfg, model.mesh().dim));
+    curves_ = std::make_unique<CsvStream>(curves, curves_header(cfg));
     return;
   }
-  history_ = open(directory + "/history.csv");
-  curves_ = open(directory + "/curves.csv");
-
-  std::ostringstream h;
-  h << "t [s],dt [s],contact solves,sweeps mean,sweeps max,residual,min beta,stick,slide,separated,"
-       "equilibrium residual,step wall [s]";
-  const std::vector<std::string> components = component_labels(model.mesh().dim);
-  for (const WatchPoint& w : cfg.output.watch) {
-    h << "," << w.name << " beta";
-    for (const char* q : {"u", "Radh", "Rbar"})
-      for (const std::string& c : components) h << "," << w.name << " " << q << "_" << c << (q[0] == 'u' ? " [mm]" : " [N]");
+  history_ = std::make_unique<CsvStream>(history, resume->t);
+  curves_ = std::make_unique<CsvStream>(curves, resume->t);
+  std::vector<std::string> keep;
+  for (double t : resume->output_times) keep.push_back(interface_file(t));
+  for (const auto& entry : std::filesystem::directory_iterator(directory)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("interface_t", 0) == 0 && std::find(keep.begin(), keep.end(), name) == keep.end())
+      std::filesystem::remove(entry.path());
   }
-  write_line(history_, h);
-
-  std::ostringstream c;
-  c << "t [s]";
-  for (std::size_t k = 0; k < cfg.loads.size(); ++k)
-    c << "," << load_label(cfg, k) << " value [" << load_unit(cfg.loads[k].kind) << "]," << load_label(cfg, k)
-      << " force [N]";
-  c << ",external work [N mm],strain energy [N mm],interface free energy change [N mm],"
-       "damage dissipation [N mm],friction dissipation [N mm],normal contact work [N mm],imbalance [N mm]";
-  write_line(curves_, c);
+  vtk_.resume(resume->output_times);
 }
 
 void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e) {
   int count[3] = {0, 0, 0};
   for (Status x : a.state.status) ++count[static_cast<int>(x)];
-  std::ostringstream h;
-  first_cell(h, a.t);
-  for (double v : {a.dt, double(a.counts.contact_solves),
-                   double(a.counts.sweeps) / std::max(1L, a.counts.contact_solves), double(a.counts.max_sweeps),
-                   a.solution.residual, a.state.beta.minCoeff(), double(count[1]), double(count[2]), double(count[0]),
-                   a.residuals.equilibrium, a.cpu_seconds})
-    cell(h, v);
+  std::vector<double> h = {a.t,
+                           a.dt,
+                           double(a.counts.contact_solves),
+                           a.counts.sweeps_per_solve(),
+                           double(a.counts.max_sweeps),
+                           a.solution.residual,
+                           a.state.beta.minCoeff(),
+                           double(count[1]),
+                           double(count[2]),
+                           double(count[0]),
+                           a.residuals.equilibrium,
+                           a.cpu_seconds};
   const Layout& L = model_.interface().layout;
   const Eigen::VectorXd Radh = adhesive_forces(model_, a.state);
   for (int i : model_.watched()) {
-    cell(h, a.state.beta[i]);
+    h.push_back(a.state.beta[i]);
     for (const Eigen::VectorXd* v : {&a.state.u, &Radh, &a.state.Rbar})
-      for (double x : normal_first(L, *v, i)) cell(h, x);
+      for (double x : normal_first(L, *v, i)) h.push_back(x);
   }
-  write_line(history_, h);
+  for (int node : model_.probes())
+    for (int c = 0; c < model_.mesh().dim; ++c) h.push_back(b.u[model_.mesh().dof(node, c)]);
+  history_->append(h);
 
-  std::ostringstream c;
-  first_cell(c, a.t);
-  for (std::size_t k = 0; k < b.value.size(); ++k) cell(c, b.value[k]), cell(c, b.force[k]);
-  for (double v : {e.external_work, e.strain_energy, e.free_energy_change, e.damage_dissipation,
-                   e.friction_dissipation, e.normal_contact_work, e.imbalance()})
-    cell(c, v);
-  write_line(curves_, c);
+  std::vector<double> c = {a.t};
+  for (std::size_t k = 0; k < b.value.size(); ++k) c.insert(c.end(), {b.value[k], b.force[k], b.displacement[k]});
+  c.insert(c.end(), {debonded_length(model_, a.state.beta), e.external_work, e.strain_energy, e.free_energy_change,
+                     e.damage_dissipation, e.friction_dissipation, e.normal_contact_work, e.imbalance()});
+  curves_->append(c);
 }
 
 void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
@@ -160,22 +137,23 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
   std::ostream& out = file.stream();
   const Interface& I = model_.interface();
   const Layout& L = I.layout;
-  const std::vector<std::string> components = component_labels(L.dim);
-  out << "node,x [mm],y [mm],a [mm],t [s],beta";
+  std::vector<std::string> header = {"node", "x [mm]", "y [mm]", "a [mm]", "t [s]", "beta"};
   for (const char* q : {"u", "Rbar", "Radh", "r", "p"})
-    for (const std::string& c : components)
-      out << "," << q << "_" << c << (q[0] == 'u' ? " [mm]" : q[0] == 'p' ? " [MPa]" : " [N]");
-  out << ",status\n";
+    for (const std::string& c : component_labels(L.dim))
+      header.push_back(std::string(q) + "_" + c + (q[0] == 'u' ? " [mm]" : q[0] == 'p' ? " [MPa]" : " [N]"));
+  header.push_back("status");
+  out << csv_line(header) << "\n";
   const Eigen::VectorXd Radh = b.r - s.Rbar;
   for (int i = 0; i < I.size(); ++i) {
     const Eigen::Vector3d& x = model_.mesh().nodes[I.pairs[i].node];
     const double a = I.pairs[i].measure;
-    out << i;
-    for (double v : {x.x(), x.y(), a, s.t, s.beta[i]}) cell(out, v);
+    std::vector<std::string> row = {std::to_string(i)};
+    for (double v : {x.x(), x.y(), a, s.t, s.beta[i]}) row.push_back(csv_number(v));
     for (const Eigen::VectorXd* v : {&s.u, &s.Rbar, &Radh, &b.r})
-      for (double x : normal_first(L, *v, i)) cell(out, x);
-    for (double x : normal_first(L, b.r, i)) cell(out, x / a);
-    out << "," << status_name(s.status[i]) << "\n";
+      for (double value : normal_first(L, *v, i)) row.push_back(csv_number(value));
+    for (double value : normal_first(L, b.r, i)) row.push_back(csv_number(value / a));
+    row.push_back(status_name(s.status[i]));
+    out << csv_line(row) << "\n";
   }
   file.commit();
   vtk_.write(s, b);

@@ -18,9 +18,10 @@ BodyState body_state(const Model& model, const InterfaceState& s) {
   b.f_ext = model.stiffness() * b.u - model.interface().P.transpose() * b.r;  // K u = f + P^T r (docs/MODEL.md s1)
   for (const LoadCase& lc : model.loads()) {
     b.value.push_back(lc.amplitude(s.t));
-    double F = 0;
-    for (int dof : lc.dofs) F += b.f_ext[dof];
+    double F = 0, u = 0;
+    for (int dof : lc.dofs) F += b.f_ext[dof], u += b.u[dof];
     b.force.push_back(F);
+    b.displacement.push_back(u / double(lc.dofs.size()));
   }
   return b;
 }

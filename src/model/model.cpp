@@ -1,6 +1,7 @@
 #include "rccm/model/model.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/memory.hpp"
 #include "rccm/fem/elasticity.hpp"
 
 #include <sstream>
@@ -15,34 +16,54 @@ double extent(const Mesh& mesh) {
   return (hi - lo).maxCoeff();
 }
 
-std::vector<int> find_watched(const Config& cfg, const Mesh& mesh, const Interface& I, double size) {
+/// For each named point of output.<list>, the nearest of `candidates` (mesh nodes); refused
+/// when it lies farther than `reach` from all of them.
+std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<NamedPoint>& points,
+                         const std::string& list, const std::vector<int>& candidates, double reach, const char* what) {
   std::vector<int> out;
-  double a_max = 0;
-  for (const ContactPair& c : I.pairs) a_max = std::max(a_max, c.measure);
-  const double reach = 1e-6 * size + a_max;
-  for (std::size_t k = 0; k < cfg.output.watch.size(); ++k) {
-    const WatchPoint& w = cfg.output.watch[k];
-    const Eigen::Vector3d p = mesh.placement(Eigen::Vector3d(w.point[0], w.point[1], 0.0));
-    const auto distance = [&](int i) { return (mesh.nodes[I.pairs[i].node] - p).norm(); };
-    int best = 0;
-    for (int i = 1; i < I.size(); ++i)
-      if (distance(i) < distance(best)) best = i;
+  for (std::size_t k = 0; k < points.size(); ++k) {
+    const Eigen::Vector3d p = mesh.placement(Eigen::Vector3d(points[k].point[0], points[k].point[1], 0.0));
+    const auto distance = [&](std::size_t j) { return (mesh.nodes[candidates[j]] - p).norm(); };
+    std::size_t best = 0;
+    for (std::size_t j = 1; j < candidates.size(); ++j)
+      if (distance(j) < distance(best)) best = j;
     if (distance(best) > reach) {
       std::ostringstream m;
-      m << cfg.where("output.watch.[" + std::to_string(k) + "]") << " '" << w.name << "': point (" << p.x() << ", "
-        << p.y() << ") is " << distance(best) << " mm from the nearest contact node; give a point on the interface";
+      m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point ("
+        << p.x() << ", " << p.y() << ") is " << distance(best) << " mm from the nearest " << what;
       throw InputError(m.str());
     }
-    out.push_back(best);
+    out.push_back(static_cast<int>(best));
   }
   return out;
+}
+
+/// The largest distance between two nodes of a cell.
+double largest_cell(const Mesh& mesh) {
+  double h = 0;
+  for (const auto& cell : mesh.cells)
+    for (int a : cell)
+      for (int b : cell) h = std::max(h, (mesh.nodes[a] - mesh.nodes[b]).norm());
+  return h;
 }
 
 }  // namespace
 
 Model::Model(const Config& cfg, Mesh mesh)
     : mesh_(std::move(mesh)), material_(cfg.material), size_(extent(mesh_)), interface_(make_interface(mesh_, cfg)) {
+  for (const Eigen::Vector3d& x : mesh_.nodes)
+    if (!x.allFinite()) throw InputError(cfg.file + ": mesh: node coordinates overflow (the mesh is too large)");
+  // The dense interface operators: W0 and the factor block it comes from, the exact step's
+  // matrix, its LU and its inverse, each (dim m)^2 doubles.
+  const double m = interface_.layout.offset(interface_.size());
+  const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes;
+  require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
+                 std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
+                 "use a coarser interface mesh, or solver.active_set_max_nodes below the contact node count");
   loads_ = make_load_cases(mesh_, cfg);
+  if (prescribed_dofs(loads_).size() == static_cast<std::size_t>(mesh_.num_dofs()))
+    throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
+  check_prescribed_gaps(cfg);
   K_ = assemble_stiffness(mesh_, cfg.material);
   check_restrained(cfg);
   std::vector<int> interface_dofs;
@@ -58,7 +79,46 @@ Model::Model(const Config& cfg, Mesh mesh)
   D1_ = interface_.spring_stiffness();
   g0_.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) g0_[i] = interface_.pairs[i].g0;
-  watched_ = find_watched(cfg, mesh_, interface_, size_);
+  double a_max = 0;
+  std::vector<int> contact_nodes, all_nodes(mesh_.num_nodes());
+  for (const ContactPair& c : interface_.pairs) a_max = std::max(a_max, c.measure), contact_nodes.push_back(c.node);
+  for (int n = 0; n < mesh_.num_nodes(); ++n) all_nodes[n] = n;
+  watched_ = nearest(cfg, mesh_, cfg.output.watch, "watch", contact_nodes, 1e-6 * size_ + a_max,
+                     "contact node; give a point on the interface");
+  probes_ = nearest(cfg, mesh_, cfg.output.probes, "probes", all_nodes, largest_cell(mesh_),
+                    "node, more than a cell; give a point in a body");
+}
+
+void Model::check_prescribed_gaps(const Config& cfg) const {
+  // A contact pair whose displacement along its normal is prescribed has its gap fixed by
+  // the loads: a prescribed closing beyond g0 would press it into the foundation (with an
+  // unbounded contact force). Loads are piecewise linear: checked at their breakpoints.
+  std::vector<double> times = {0.0, cfg.time.T};
+  for (const LoadCase& lc : loads_)
+    for (double t : lc.amplitude.t)
+      if (t > 0 && t < cfg.time.T) times.push_back(t);
+  std::vector<char> prescribed(mesh_.num_dofs(), 0);
+  for (int d : prescribed_dofs(loads_)) prescribed[d] = 1;
+  for (int i = 0; i < interface_.size(); ++i) {
+    const ContactPair& c = interface_.pairs[i];
+    if (c.opposite >= 0) continue;
+    bool fixed = true;
+    for (int x = 0; x < mesh_.dim; ++x) fixed = fixed && (c.frame.n[x] == 0 || prescribed[mesh_.dof(c.node, x)]);
+    if (!fixed) continue;
+    for (double t : times) {
+      double u_n = 0;
+      for (const LoadCase& lc : loads_)
+        for (int x = 0; x < mesh_.dim; ++x) u_n += c.frame.n[x] * lc.amplitude(t) * lc.displacement[mesh_.dof(c.node, x)];
+      if (c.g0 + u_n < -1e-9 * size_) {
+        std::ostringstream m;
+        m << cfg.where("loads") << ": the prescribed displacement pushes contact node " << i << " ("
+          << mesh_.nodes[c.node].x() << ", " << mesh_.nodes[c.node].y() << ") into the foundation by " << -(c.g0 + u_n)
+          << " mm at t = " << t << " s; a node on the interface may be moved away from the foundation (or along "
+          << "it), not into it";
+        throw InputError(m.str());
+      }
+    }
+  }
 }
 
 void Model::check_restrained(const Config& cfg) const {

@@ -3,6 +3,8 @@
 #include "rccm/base/errors.hpp"
 
 #include <arkode/arkode_arkstep.h>
+#include <arkode/arkode_butcher_dirk.h>
+#include <arkode/arkode_butcher_erk.h>
 #include <nvector/nvector_serial.h>
 #include <sundials/sundials_context.h>
 #include <sunlinsol/sunlinsol_klu.h>
@@ -150,6 +152,14 @@ struct ArkodeIntegrator::Impl {
     return v;
   }
 };
+
+bool arkode_table_exists(bool implicit, const std::string& name) {
+  ARKodeButcherTable B =
+      implicit ? ARKodeButcherTable_LoadDIRKByName(name.c_str()) : ARKodeButcherTable_LoadERKByName(name.c_str());
+  if (!B) return false;
+  ARKodeButcherTable_Free(B);
+  return true;
+}
 
 ArkodeIntegrator::ArkodeIntegrator(BetaSystem& ode, const IntegratorParams& params, double T)
     : impl_(std::make_unique<Impl>(ode, params, T)) {}

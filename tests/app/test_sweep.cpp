@@ -1,5 +1,6 @@
 // rccm sweep: the grid of cases, the rate-independent case, and a physical check of the
 // alpha study: more viscosity, higher peak peel force (docs/MODEL.md s3, docs/BENCHMARKS.md B1).
+#include "helpers.hpp"
 #include "rccm/app/sweep.hpp"
 
 #include <catch2/catch.hpp>
@@ -49,10 +50,11 @@ TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha"
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep";
   fs::remove_all(dir);
   fs::create_directories(dir);
-  std::vector<SweepCase> cases = make_sweep_cases(b1, {}, {{"interface.alpha", {"1", "10", "100"}}}, dir.string());
+  const std::vector<SweepAxis> axes = {{"interface.alpha", {"1", "10", "100"}}};
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {}, axes, dir.string());
   run_sweep(cases, 2);
   std::ostringstream table;
-  write_sweep_summary(table, dir.string(), cases, "rccm", b1);
+  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
   CHECK(lines(dir / "summary.csv") == 4);  // header and three rows
   CHECK(lines(dir / "jobs.txt") == 3);
   for (const SweepCase& c : cases) {
@@ -67,4 +69,40 @@ TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha"
   CHECK(p10 < p100);
   // A more viscous interface debonds less by T.
   CHECK(cases[2].result.snapshots.back().debonded_length < cases[0].result.snapshots.back().debonded_length);
+}
+
+TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the failed row has a status and empty cells",
+          "[sweep]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_failed";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  // Too few sweeps for the first case's contact solves; the others are fine.
+  const std::vector<SweepAxis> axes = {{"solver.max_iterations", {"2", "2000"}}, {"interface.mu", {"0.2", "0.3"}}};
+  std::vector<SweepCase> cases =
+      make_sweep_cases(b1, {"integrator.method=euler", "solver.active_set=false", "time.T=2.0", "output.times=[1.0]",
+                            "loads.[0].value=0.06"},
+                       axes, dir.string());
+  run_sweep(cases, 1);
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  REQUIRE(cases[0].status == CaseStatus::Failed);
+  CHECK(cases[3].status == CaseStatus::Complete);
+  const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
+  REQUIRE(summary.rows.size() == 4);
+  CHECK(summary.header[1] == "solver.max_iterations");
+  CHECK(summary.header[2] == "interface.mu");
+  CHECK(summary.header[3] == "status");
+  for (const auto& row : summary.rows) CHECK(row.size() == summary.header.size());
+  CHECK(summary.rows[0][1] == "2");
+  CHECK(summary.rows[0][3] == "failed");
+  CHECK(summary.rows[0][4].empty());  // no peak force: not a zero that looks like data
+  CHECK_THAT(summary.rows[0].back(), Catch::Contains("did not converge"));
+  CHECK(summary.rows[3][3] == "complete");
+  CHECK(std::stod(summary.rows[3][4]) > 0);
+  // The job list reruns each case on its own, quoted for the shell.
+  std::ifstream jobs(dir / "jobs.txt");
+  std::string first;
+  std::getline(jobs, first);
+  CHECK_THAT(first, Catch::Contains("--set 'solver.max_iterations=2'") && Catch::Contains(" -o '"));
+  fs::remove_all(dir);
 }

@@ -1,5 +1,6 @@
 // SIGINT and SIGTERM ask a run to stop: the handler only records the request, and the run
-// stops at its next accepted step with complete files (throw_if_stop_requested).
+// stops at its next accepted step with complete files (throw_if_stop_requested). A second
+// signal exits at once.
 #pragma once
 
 namespace rccm {

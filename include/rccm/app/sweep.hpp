@@ -3,8 +3,8 @@
 // subdirectory, with a summary table and a plain job list for a cluster.
 #pragma once
 
-#include "rccm/base/config.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/base/config.hpp"
 
 #include <iosfwd>
 #include <string>
@@ -18,12 +18,18 @@ struct SweepAxis {
   std::vector<std::string> values;
 };
 
+enum class CaseStatus { NotRun, Complete, Failed, Interrupted };
+const char* case_status_name(CaseStatus s);
+
 struct SweepCase {
   std::string name;                    // subdirectory, e.g. "alpha=0.01" or "alpha=1_mu=0.3"
-  std::vector<std::string> overrides;  // path=value of this case
+  std::vector<std::string> values;     // its value of each axis
+  std::vector<std::string> overrides;  // path=value of this case (the fixed ones first)
   Config config;
   RunResult result;
-  std::string error;                   // a case that failed: its message
+  CaseStatus status = CaseStatus::NotRun;
+  std::string error;                   // a case that failed or was interrupted: its message
+  int signal = 0;                      // the signal that interrupted it
 };
 
 /// Splits --set items into sweep axes (a value with commas outside brackets) and plain
@@ -31,16 +37,20 @@ struct SweepCase {
 void split_sweep_settings(const std::vector<std::string>& items, std::vector<SweepAxis>& axes,
                           std::vector<std::string>& fixed);
 
-/// Builds the cases (the grid of all axes); interface.alpha = 0 is run by the
-/// rate-independent integrator. Throws InputError for a bad case config (before any run).
+/// Builds the cases (the grid of all axes). Throws InputError for a bad case config, before
+/// any case runs.
 std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const std::vector<std::string>& fixed,
                                         const std::vector<SweepAxis>& axes, const std::string& directory);
 
-/// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier results).
+/// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier
+/// results). A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
+/// step and starts no other: the cases not run keep the status NotRun.
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
-/// summary.csv and jobs.txt in `directory`, and the table on `out`.
-void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepCase>& cases,
-                         const std::string& rccm_path, const std::string& config_file);
+/// summary.csv (one row per case: its value of each axis, its status, its figures, empty
+/// cells where a case did not complete) and jobs.txt in `directory`, and the table on `out`.
+void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
+                         const std::vector<SweepCase>& cases, const std::string& rccm_path,
+                         const std::string& config_file);
 
 }  // namespace rccm

@@ -106,15 +106,18 @@ struct IntegratorParams {
   int fixed_point_iterations = 500;
 };
 
-struct WatchPoint {
+/// A named point, in the mesh source's frame (mm): a watched point of the interface (the
+/// nearest contact pair) or a probe of a body (the nearest mesh node).
+struct NamedPoint {
   std::string name;
-  std::array<double, 2> point{};  // mm, in the mesh source's frame; the nearest contact node is watched
+  std::array<double, 2> point{};
 };
 
 struct OutputParams {
   std::string directory = "results";
   std::vector<double> times;      // s, in [0, T]
-  std::vector<WatchPoint> watch;
+  std::vector<NamedPoint> watch;  // interface points: beta, u, Radh, Rbar at every step
+  std::vector<NamedPoint> probes; // body points: displacement at every step
   int checkpoint_steps = 100;     // a restart point every this many accepted steps; 0: only at a stop
 };
 

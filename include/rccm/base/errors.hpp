@@ -21,6 +21,11 @@ struct SolveError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// A result file that could not be written (disk full, directory removed): the run stops.
+struct WriteError : SolveError {
+  using SolveError::SolveError;
+};
+
 /// A run stopped at an accepted step because SIGINT or SIGTERM asked it to (StopRequest).
 struct Interrupted : std::runtime_error {
   Interrupted(const std::string& what, int signal) : std::runtime_error(what), signal(signal) {}

@@ -39,6 +39,10 @@ struct Mesh {
   /// Boundary facets whose nodes all belong to `set`.
   std::vector<std::vector<int>> facets_within(const std::vector<int>& set) const;
 
+  /// Unit outward normal of the boundary per node of `set`: the average of its facets' in the
+  /// set, weighted by their measure; zero for a node on no such facet.
+  std::vector<Eigen::Vector3d> outward_normals(const std::vector<int>& set) const;
+
   /// Lumped facet measure per node of `set` (2D: half the length of each adjacent edge in
   /// the set), mm; 0 for a node on no such facet.
   std::vector<double> tributary_measures(const std::vector<int>& set) const;

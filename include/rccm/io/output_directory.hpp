@@ -13,10 +13,12 @@ namespace rccm {
 void check_output_directory(const Config& cfg, bool force);
 
 /// Creates output.directory and holds an exclusive lock on DIR/.lock while alive: a second
-/// run into the same directory is refused while this one runs (even with --force).
+/// run into the same directory is refused while this one runs (even with --force). `fresh`:
+/// the result files of an earlier run there (and its plots/) are removed first, so that a
+/// forced run starts from an empty result set; other files are left alone.
 class OutputDirectory {
  public:
-  explicit OutputDirectory(const Config& cfg);
+  OutputDirectory(const Config& cfg, bool fresh);
   ~OutputDirectory();
   OutputDirectory(const OutputDirectory&) = delete;
   OutputDirectory& operator=(const OutputDirectory&) = delete;

@@ -59,11 +59,15 @@ class Recorder {
   /// The interface and the mesh at the committed state: an output time.
   void snapshot();
 
-  /// The end of the run, complete or `stopped` (why): a checkpoint of the last accepted
-  /// state, its snapshot if it stopped between output times, totals and the report.
-  RunResult finish(const std::string& stopped = "");
+  /// The end of a complete run: a checkpoint of the last state, totals and the report.
+  RunResult finish();
+  /// The end of a run stopped before T (`why`): as finish(), with a snapshot of the last
+  /// accepted state. Never throws: returns what a message should add (where the results
+  /// are, or that the files could not be written).
+  std::string stop(const std::string& why);
 
  private:
+  RunResult close(const std::string& stopped);
   void save_checkpoint();
   double seconds() const;
 

@@ -1,20 +1,21 @@
-// The result files of a run, in output.directory (README "Result files"):
+// The CSV result files of a run, in output.directory (README "Result files"):
 //   interface_t<time>.csv  interface fields at each output time
-//   history.csv            watched points and solver work at every accepted step
-//   curves.csv             each load's value and resultant force, and the energy terms
-//   mesh_<k>.vtu, results.pvd   ParaView
-// The CSV streams grow by one complete line per accepted step (one write each); the other
-// files are written whole under a temporary name and renamed (AtomicFile).
+//   history.csv            solver work, watched points and probes at every accepted step
+//   curves.csv             each load's value, resultant and displacement, the debonded
+//                          length and the energy terms at every accepted step
+// and the ParaView files (vtk_writer.hpp). The CSV streams grow by one complete line per
+// accepted step; the other files are written whole under a temporary name and renamed.
 #pragma once
 
 #include "rccm/base/config.hpp"
+#include "rccm/io/csv.hpp"
 #include "rccm/io/vtk_writer.hpp"
 #include "rccm/model/body_state.hpp"
 #include "rccm/model/model.hpp"
 #include "rccm/time/beta_ode.hpp"
 #include "rccm/time/energy_balance.hpp"
 
-#include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,10 @@ struct ResumePoint {
   double t = 0;
   std::vector<double> output_times;  // of the snapshots taken up to t
 };
+
+/// The debonded length: the measure of the interface where beta < 1/2 (the sum of the
+/// tributary measures of those pairs), mm. One definition for every file and plot.
+double debonded_length(const Model& model, const Eigen::VectorXd& beta);
 
 class ResultWriter {
  public:
@@ -42,7 +47,7 @@ class ResultWriter {
   const Model& model_;
   const Config& cfg_;
   std::string directory_;
-  std::ofstream history_, curves_;
+  std::unique_ptr<CsvStream> history_, curves_;
   VtkWriter vtk_;
 };
 

@@ -40,6 +40,8 @@ class Model {
 
   /// Contact pair watched for each output.watch entry (nearest pair to its point).
   const std::vector<int>& watched() const { return watched_; }
+  /// Mesh node of each output.probes entry (nearest node to its point).
+  const std::vector<int>& probes() const { return probes_; }
 
   /// The condensed problem at time t and adhesion beta, slip measured from u_ref
   /// (docs/MODEL.md s4). Its W0 points into this model.
@@ -51,6 +53,8 @@ class Model {
  private:
   /// Throws InputError when no contact state can hold the body (a frictionless, unbonded interface).
   void check_restrained(const Config& cfg) const;
+  /// Throws InputError when a prescribed displacement presses a contact node into the foundation.
+  void check_prescribed_gaps(const Config& cfg) const;
 
   Mesh mesh_;
   MaterialParams material_;
@@ -61,7 +65,7 @@ class Model {
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
   Eigen::VectorXd D1_, g0_;
-  std::vector<int> watched_;
+  std::vector<int> watched_, probes_;
 };
 
 }  // namespace rccm

@@ -9,8 +9,12 @@
 #include "rccm/time/integrator.hpp"
 
 #include <memory>
+#include <string>
 
 namespace rccm {
+
+/// Whether ARKODE knows a Butcher table of this name (implicit: a DIRK table, else ERK).
+bool arkode_table_exists(bool implicit, const std::string& name);
 
 class ArkodeIntegrator final : public BetaIntegrator {
  public:

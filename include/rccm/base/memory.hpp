@@ -1,0 +1,16 @@
+// Memory a run will need, refused up front when the machine does not have it: a mesh or a
+// step count too large fails with its estimate, not with bad_alloc after minutes.
+#pragma once
+
+#include <string>
+
+namespace rccm {
+
+/// Bytes the machine can give this process now (Linux MemAvailable; a large number elsewhere).
+double available_memory();
+
+/// Throws InputError "`where`: <what> needs about X GB, the machine has Y GB available; <advice>"
+/// when `bytes` exceed what is available.
+void require_memory(double bytes, const std::string& where, const std::string& what, const std::string& advice);
+
+}  // namespace rccm
