@@ -1,6 +1,74 @@
 #include "rccm/base/config.hpp"
 
+#include <cstdint>
+#include <cstdio>
+
 namespace rccm {
+
+namespace {
+
+/// FNV-1a of named values written exactly (doubles as hex floats).
+class Hash {
+ public:
+  Hash& operator()(const char* name, double v) {
+    char buf[48];
+    std::snprintf(buf, sizeof buf, "%s=%a;", name, v);
+    return mix(buf);
+  }
+  Hash& operator()(const char* name, const std::string& v) { return mix(std::string(name) + "=" + v + ";"); }
+  template <class Numbers>
+  Hash& list(const char* name, const Numbers& v) {
+    (*this)(name, double(v.size()));
+    for (double x : v) (*this)(name, x);
+    return *this;
+  }
+  std::string hex() const {
+    char out[20];
+    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h_));
+    return out;
+  }
+
+ private:
+  Hash& mix(const std::string& text) {
+    for (unsigned char ch : text) h_ = (h_ ^ ch) * 1099511628211ull;
+    return *this;
+  }
+  std::uint64_t h_ = 14695981039346656037ull;
+};
+
+}  // namespace
+
+std::string Config::fingerprint() const {
+  Hash h;
+  h.list("mesh.origin", mesh.origin).list("mesh.size", mesh.size)("mesh.nx", mesh.nx)("mesh.ny", mesh.ny);
+  h("mesh.element", double(mesh.element))("mesh.rotation", mesh.rotation);
+  for (const NodeSetDef& d : mesh.node_sets) h("mesh.node_sets.name", d.name).list("mesh.node_sets.box", d.box);
+  h("material.E", material.E)("material.nu", material.nu)("material.hypothesis", double(material.hypothesis));
+  for (const InterfaceParams& p : interfaces) {
+    h("interface.boundary", p.boundary).list("interface.normal", p.normal)("interface.Cn", p.Cn)("interface.Ct", p.Ct);
+    h("interface.w", p.w)("interface.alpha", p.alpha)("interface.mu", p.mu);
+    h.list("interface.beta0", p.beta0).list("interface.g0", p.g0);
+  }
+  for (const LoadParams& l : loads) {
+    h("loads.node_set", l.node_set)("loads.kind", double(l.kind))("loads.component", l.component);
+    h.list("loads.t", l.amplitude.t).list("loads.v", l.amplitude.v);
+  }
+  h("time.T", time.T)("time.steps", time.steps);
+  h("solver.tolerance", solver.tolerance)("solver.max_iterations", solver.max_iterations);
+  h("solver.local_iterations", solver.local_iterations)("solver.form", double(solver.form));
+  h("solver.rho", double(solver.rho))("solver.relaxation", solver.relaxation)("solver.active_set", solver.active_set);
+  h("solver.active_set_max_nodes", solver.active_set_max_nodes);
+  const IntegratorParams& A = integrator;
+  h("integrator.method", double(A.method))("integrator.scheme", double(A.scheme))("integrator.table", A.table);
+  h("integrator.rtol", A.rtol)("integrator.atol", A.atol)("integrator.max_step", A.max_step);
+  h("integrator.initial_step", A.initial_step)("integrator.fixed_step", A.fixed_step)("integrator.min_step", A.min_step);
+  h("integrator.max_steps", A.max_steps)("integrator.fixed_point_tolerance", A.fixed_point_tolerance);
+  h("integrator.fixed_point_iterations", A.fixed_point_iterations);
+  h.list("output.times", output.times);
+  for (const NamedPoint& p : output.watch) h("output.watch.name", p.name).list("output.watch.point", p.point);
+  for (const NamedPoint& p : output.probes) h("output.probes.name", p.name).list("output.probes.point", p.point);
+  return h.hex();
+}
 
 std::string Config::where(const std::string& path) const {
   const auto it = lines.find(path);

@@ -46,12 +46,21 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
   std::sort(last.begin(), last.end());
   last.erase(std::unique(last.begin(), last.end()), last.end());
   factor_ = std::make_unique<CholmodFactor>(K0_FF, last);
-  // A floating body gives a zero pivot or, in floating point, a tiny one.
+  // A floating body gives a zero pivot or, in floating point, a tiny one; so do stiffnesses
+  // that differ by more than double precision can hold (Cn = 1e30 against E = 1e3).
   if (!factor_->ok() || factor_->rcond() < 1e-14) {
+    const Eigen::VectorXd d = Eigen::VectorXd(K0_FF.diagonal()).cwiseAbs();
+    const double spread = d.maxCoeff() / std::max(d.minCoeff(), 1e-300);
     std::ostringstream m;
-    m << "the structure is not restrained: its stiffness with the interface springs is singular"
-      << " (CHOLMOD rcond " << (factor_->ok() ? factor_->rcond() : 0.0)
-      << "); add a prescribed displacement on a node set or an interface that holds the body";
+    m.precision(3);
+    if (spread > 1e12)
+      m << "the structure's stiffness is ill-conditioned (CHOLMOD rcond " << (factor_->ok() ? factor_->rcond() : 0.0)
+        << "): its diagonal spans a factor " << spread << "; bring the stiffnesses closer (the interface's "
+        << "a Cn and a Ct against the body's E, or the materials among themselves)";
+    else
+      m << "the structure is not restrained: its stiffness with the interface springs is singular (CHOLMOD rcond "
+        << (factor_->ok() ? factor_->rcond() : 0.0)
+        << "); add a prescribed displacement on a node set or an interface that holds the body";
     throw InputError(m.str());
   }
 }

@@ -47,7 +47,7 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
         std::ostringstream m;
         m << cfg.where(p.path + ".normal") << ": the foundation normal (" << foundation.normal.x() << ", "
           << foundation.normal.y() << ") does not point into the body at contact node " << k << " (" << x.x() << ", "
-          << x.y() << "), where the boundary's inward normal is (" << -outward[k].x() << ", " << -outward[k].y()
+          << x.y() << "), where the boundary's inward normal is (" << 0.0 - outward[k].x() << ", " << 0.0 - outward[k].y()
           << "); give the normal from the foundation into the body";
         throw InputError(m.str());
       }

@@ -4,6 +4,7 @@
 #include "rccm/base/errors.hpp"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -13,7 +14,7 @@ namespace rccm {
 
 namespace {
 
-const char* const magic = "rccm-checkpoint-1";
+const char* const magic = "rccm-checkpoint-2";  // 2: no step records (history.csv holds them)
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
 class RecordWriter {
@@ -60,6 +61,19 @@ class RecordReader {
     std::string rest;
     std::getline(line >> std::ws, rest);
     return rest;
+  }
+  /// A value read on the last line that breaks a rule of the state: refused, naming the line.
+  void check(bool ok, const std::string& rule) const {
+    if (!ok)
+      throw InputError(path_ + ":" + std::to_string(line_) + ": " + rule +
+                       " (a damaged checkpoint; start the run afresh with --force)");
+  }
+  /// A count: a whole number in [0, max].
+  long count(const char* name, double max) {
+    const double v = number(name);
+    check(v >= 0 && v <= max && v == std::floor(v), std::string(name) + " must be a whole number in [0, " +
+                                                        std::to_string(static_cast<long>(max)) + "]");
+    return static_cast<long>(v);
   }
   [[noreturn]] void fail(const std::string& expected) const {
     throw InputError(path_ + ":" + std::to_string(line_) + ": expected " + expected +
@@ -124,10 +138,6 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
   const IntegratorStats& I = p.integrator;
   w.vector("integrator", Eigen::Vector4d(double(I.steps), double(I.rejected), double(I.rhs_evaluations),
                                          double(I.newton_iterations)));
-  w.number("step_records", double(p.steps.size()));
-  for (const StepRecord& s : p.steps)
-    w.vector("record", (Eigen::VectorXd(7) << s.step, s.t, s.dt, double(s.contact_solves), s.sweeps_mean,
-                        s.sweeps_max, s.cpu_seconds).finished());
   w.number("snapshots", double(p.snapshots.size()));
   for (const Snapshot& s : p.snapshots) {
     w.number("snapshot_t", s.t);
@@ -149,56 +159,71 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
     throw InputError(path + ": no checkpoint to restart from (a run writes one every output.checkpoint_steps "
                             "steps and when it stops)");
   RecordReader r(in, path);
+  const auto finite = [](const Eigen::VectorXd& v) { return v.allFinite(); };
   Checkpoint c;
   r.text(magic);
   c.settings = r.text("settings");
   if (c.settings != cfg.settings)
     throw InputError(path + ": written by a run of other settings than " + cfg.file +
                      " with these --set options; restart with the same config and options, or run afresh with --force");
-  c.step = r.integer("step");
+  c.step = static_cast<int>(r.count("step", 2e9));
   c.last_step = r.number("last_step");
+  r.check(std::isfinite(c.last_step) && c.last_step >= 0 && c.last_step <= cfg.time.T,
+          "last_step must be in [0, time.T]");
   c.state.t = r.number("t");
+  r.check(c.state.t >= 0 && c.state.t <= cfg.time.T, "t must be in [0, time.T = " + std::to_string(cfg.time.T) + "]");
   c.state.beta = r.vector("beta");
-  c.state.Rbar = r.vector("Rbar");
-  c.state.u = r.vector("u");
-  c.state.y = r.vector("y");
+  r.check(finite(c.state.beta) && c.state.beta.size() > 0 && c.state.beta.minCoeff() >= 0 &&
+              c.state.beta.maxCoeff() <= 1,
+          "beta must be in [0, 1]");
+  const long m = c.state.beta.size();
+  for (Eigen::VectorXd* v : {&c.state.Rbar, &c.state.u, &c.state.y}) {
+    const char* name = v == &c.state.Rbar ? "Rbar" : v == &c.state.u ? "u" : "y";
+    *v = r.vector(name);
+    r.check(finite(*v), std::string(name) + " must be finite");
+    r.check((v->size() == 2 * m || v->size() == 3 * m) && v->size() == c.state.Rbar.size(),
+            std::string(name) + " must have 2 or 3 components per contact node");
+  }
   for (double s : r.vector("status")) {
     if (s != 0 && s != 1 && s != 2) r.fail("a status 0, 1 or 2");
     c.state.status.push_back(static_cast<Status>(int(s)));
   }
-  const long m = c.state.beta.size();
-  if (c.state.Rbar.size() != 2 * m || c.state.u.size() != 2 * m || c.state.y.size() != 2 * m ||
-      long(c.state.status.size()) != m)
-    r.fail("vectors of one size per contact node");
+  r.check(long(c.state.status.size()) == m, "status must have one entry per contact node");
   const Eigen::VectorXd e = r.vector("energy");
-  if (e.size() != 6) r.fail("6 energy terms");
+  r.check(e.size() == 6 && finite(e), "energy must be 6 finite terms");
   c.energy = {e[0], e[1], e[2], e[3], e[4], e[5]};
   RunResult& p = c.progress;
-  const Eigen::VectorXd peak_force = r.vector("peak_force"), peak_time = r.vector("peak_time");
+  const Eigen::VectorXd peak_force = r.vector("peak_force");
+  r.check(finite(peak_force) && long(peak_force.size()) == long(cfg.loads.size()), "one finite peak force per load");
+  const Eigen::VectorXd peak_time = r.vector("peak_time");
+  r.check(peak_time.size() == peak_force.size() && finite(peak_time), "one finite peak time per load");
   p.peak_force.assign(peak_force.begin(), peak_force.end());
   p.peak_time.assign(peak_time.begin(), peak_time.end());
   const Eigen::VectorXd solves = r.vector("solves"), integrator = r.vector("integrator");
-  if (solves.size() != 4 || integrator.size() != 4) r.fail("4 solve and 4 integrator counts");
+  r.check(solves.size() == 4 && integrator.size() == 4 && finite(solves) && finite(integrator) &&
+              solves.minCoeff() >= 0 && integrator.minCoeff() >= 0,
+          "4 solve and 4 integrator counts, none negative");
   p.solves = {long(solves[0]), long(solves[1]), int(solves[2]), solves[3]};
   p.integrator = {long(integrator[0]), long(integrator[1]), long(integrator[2]), long(integrator[3])};
-  for (int k = r.integer("step_records"); k > 0; --k) {
-    const Eigen::VectorXd s = r.vector("record");
-    if (s.size() != 7) r.fail("7 numbers per step record");
-    p.steps.push_back({int(s[0]), s[1], s[2], long(s[3]), s[4], int(s[5]), s[6]});
-  }
-  for (int k = r.integer("snapshots"); k > 0; --k) {
+  for (long k = r.count("snapshots", 1e6); k > 0; --k) {
     Snapshot s;
     s.t = r.number("snapshot_t");
+    r.check(s.t >= 0 && s.t <= c.state.t, "a snapshot's time must be in [0, t]");
     s.debonded_length = r.number("debonded_length");
     s.beta = r.vector("snapshot_beta");
     s.Rbar = r.vector("snapshot_Rbar");
     s.u = r.vector("snapshot_u");
+    r.check(s.beta.size() == m && s.Rbar.size() == c.state.Rbar.size() && s.u.size() == c.state.u.size() &&
+                finite(s.beta) && finite(s.Rbar) && finite(s.u),
+            "a snapshot must have finite vectors of the state's sizes");
     p.snapshots.push_back(std::move(s));
   }
   const Eigen::VectorXd diagnostics = r.vector("diagnostics");
+  r.check(finite(diagnostics), "diagnostics must be finite");
   c.diagnostics.assign(diagnostics.begin(), diagnostics.end());
   const Eigen::VectorXd excursion = r.vector("excursion");
-  if (excursion.size() != 3) r.fail("3 numbers for 'excursion'");
+  r.check(excursion.size() == 3 && finite(excursion) && excursion[2] >= -1 && excursion[2] < m,
+          "excursion must be 3 numbers (size, t, contact node)");
   c.excursion = {excursion[0], excursion[1], int(excursion[2])};
   r.text("end");
   return c;

@@ -29,6 +29,13 @@ namespace {
 
 using libconfig::Setting;
 
+/// A number for a message: 3 significant digits.
+std::string short_number(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.3g", v);
+  return buf;
+}
+
 std::string type_name(const Setting& s) {
   switch (s.getType()) {
     case Setting::TypeInt:
@@ -347,9 +354,9 @@ MeshParams read_mesh(const Reader& r, const Setting& root) {
   const double nodes = (p.nx + 1.0) * (p.ny + 1.0), dofs = 2 * nodes;
   const double bytes = dofs * (600 + 100 * std::log2(std::max(dofs, 2.0)));
   if (bytes > available_memory())
-    r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + " mesh (" + csv_number(dofs) +
-                        " unknowns) needs about " + csv_number(bytes / 1e9) + " GB, the machine has " +
-                        csv_number(available_memory() / 1e9) + " GB available; use fewer cells");
+    r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + " mesh (" + short_number(dofs) +
+                        " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
+                        short_number(available_memory() / 1e9) + " GB available; use fewer cells");
   p.rotation = r.number(m, "rotation", 0.0);
   if (m.exists("node_sets")) {
     const Setting& sets = m["node_sets"];
@@ -430,8 +437,8 @@ TimeParams read_time(const Reader& r, const Setting& root) {
   if (t.exists("steps")) r.check(p.steps >= 1, t["steps"], "must be >= 1", p.steps);
   // Each fixed step keeps its time and a record of its work (64 bytes).
   if (64.0 * p.steps > available_memory())
-    r.fail(t["steps"], std::to_string(p.steps) + " steps need about " + csv_number(64e-9 * p.steps) +
-                           " GB, the machine has " + csv_number(available_memory() / 1e9) + " GB available");
+    r.fail(t["steps"], std::to_string(p.steps) + " steps need about " + short_number(64e-9 * p.steps) +
+                           " GB, the machine has " + short_number(available_memory() / 1e9) + " GB available");
   return p;
 }
 
@@ -604,34 +611,6 @@ void record_lines(const Setting& s, std::map<std::string, int>& lines) {
 
 namespace {
 
-/// FNV-1a of "path=value" of every scalar setting but those that do not shape the results.
-std::string settings_fingerprint(const Setting& root) {
-  std::uint64_t h = 14695981039346656037ull;
-  const auto mix = [&h](const std::string& text) {
-    for (unsigned char ch : text) h = (h ^ ch) * 1099511628211ull;
-  };
-  const std::function<void(const Setting&)> visit = [&](const Setting& s) {
-    if (s.isAggregate()) {
-      for (int i = 0; i < s.getLength(); ++i) visit(s[i]);
-      return;
-    }
-    const std::string path = s.getPath();
-    if (path == "output.directory" || path == "output.checkpoint_steps") return;
-    char value[64];
-    switch (s.getType()) {
-      case Setting::TypeFloat: std::snprintf(value, sizeof value, "%a", double(s)); break;
-      case Setting::TypeString: mix(path + "=" + s.c_str() + ";"); return;
-      case Setting::TypeBoolean: std::snprintf(value, sizeof value, "%d", bool(s) ? 1 : 0); break;
-      default: std::snprintf(value, sizeof value, "%lld", static_cast<long long>(s)); break;
-    }
-    mix(path + "=" + value + ";");
-  };
-  visit(root);
-  char out[20];
-  std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-  return out;
-}
-
 /// Overrides, then the checked read, of a parsed libconfig tree.
 Config finish(libconfig::Config& cfg, const std::string& path, const std::vector<std::string>& overrides) {
   for (const std::string& o : overrides) apply_override(cfg, o);
@@ -639,7 +618,7 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
   try {
     Config c = read(reader, cfg.getRoot(), path);
     record_lines(cfg.getRoot(), c.lines);
-    c.settings = settings_fingerprint(cfg.getRoot());
+    c.settings = c.fingerprint();
     return c;
   } catch (const libconfig::SettingException& e) {
     throw InputError(path + ": " + e.getPath() + ": " + e.what());

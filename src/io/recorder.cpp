@@ -1,5 +1,6 @@
 #include "rccm/io/recorder.hpp"
 
+#include "rccm/base/errors.hpp"
 #include "rccm/io/csv.hpp"
 #include "rccm/io/run_report.hpp"
 
@@ -50,6 +51,11 @@ void Recorder::open(const Model& model) {
     *options_.step_log << "# " << cfg_.file << ": " << result_.nodes << " nodes, " << result_.cells << " cells, "
                        << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
                        << "\n#  step      t [s]    dt [s] solves sweeps(mean max)  residual    min beta stick slide   sep\n";
+  if (resume_ && (model.contact_nodes() != resume_->state.beta.size() ||
+                  model.interface().layout.offset(model.contact_nodes()) != resume_->state.u.size()))
+    throw InputError(checkpoint_path(cfg_.output.directory) + ": written for a model of " +
+                     std::to_string(resume_->state.beta.size()) + " contact nodes, this one has " +
+                     std::to_string(model.contact_nodes()) + "; start the run afresh with --force");
   if (!options_.write_files) return;
   directory_ = std::make_unique<OutputDirectory>(cfg_, options_.force);
   ResumePoint point;
@@ -74,7 +80,7 @@ void Recorder::start(BetaOde& ode) {
   energy_->resume(resume_->state, body_, resume_->energy);
   const RunResult& p = resume_->progress;
   result_.snapshots = p.snapshots;
-  result_.steps = p.steps;
+  result_.steps = writer_->resumed_steps();
   result_.peak_force = p.peak_force;
   result_.peak_time = p.peak_time;
   earlier_ = p.integrator;
@@ -110,7 +116,6 @@ void Recorder::save_checkpoint() {
   Checkpoint c{cfg_.settings,           ode_->steps(),              integrator_->last_step(), ode_->committed(),
                energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}};
   c.progress.snapshots = result_.snapshots;
-  c.progress.steps = result_.steps;
   c.progress.peak_force = result_.peak_force;
   c.progress.peak_time = result_.peak_time;
   c.progress.solves = ode_->totals();

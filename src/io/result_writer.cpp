@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
 #include <filesystem>
 
 namespace rccm {
@@ -89,6 +91,15 @@ ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::str
   }
   history_ = std::make_unique<CsvStream>(history, resume->t);
   curves_ = std::make_unique<CsvStream>(curves, resume->t);
+  // Its rows (the same columns: the settings are the checkpoint's) are the step records.
+  std::ifstream in(history);
+  std::string line;
+  std::getline(in, line);
+  for (int step = 0; std::getline(in, line); ++step) {
+    const std::vector<std::string> f = csv_split(line);
+    const auto at = [&](std::size_t k) { return std::strtod(f.at(k).c_str(), nullptr); };
+    resumed_steps_.push_back({step, at(0), at(1), long(at(2)), at(3), int(at(4)), at(11)});
+  }
   std::vector<std::string> keep;
   for (double t : resume->output_times) keep.push_back(interface_file(t));
   for (const auto& entry : std::filesystem::directory_iterator(directory)) {

@@ -10,7 +10,10 @@
 #include <sunlinsol/sunlinsol_klu.h>
 #include <sunmatrix/sunmatrix_sparse.h>
 
+#include <cstdio>
 #include <cstdlib>
+#include <fcntl.h>
+#include <unistd.h>
 #include <exception>
 #include <sstream>
 
@@ -154,8 +157,16 @@ struct ArkodeIntegrator::Impl {
 };
 
 bool arkode_table_exists(bool implicit, const std::string& name) {
+  // ARKODE reports an unknown name on stderr itself; the config reader says it with the
+  // file and line, so stderr is closed for the look-up.
+  std::fflush(stderr);
+  const int saved = ::dup(2), null = ::open("/dev/null", O_WRONLY);
+  if (null >= 0) ::dup2(null, 2);
   ARKodeButcherTable B =
       implicit ? ARKodeButcherTable_LoadDIRKByName(name.c_str()) : ARKodeButcherTable_LoadERKByName(name.c_str());
+  std::fflush(stderr);
+  if (saved >= 0) ::dup2(saved, 2), ::close(saved);
+  if (null >= 0) ::close(null);
   if (!B) return false;
   ARKodeButcherTable_Free(B);
   return true;

@@ -124,9 +124,11 @@ struct OutputParams {
 struct Config {
   std::string file;                  // path it was read from
   std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
-  /// Fingerprint of every setting that shapes the results (all but output.directory and
-  /// output.checkpoint_steps): a checkpoint restarts only a run of the same settings.
+  /// Fingerprint of every parsed value that shapes the results (all but output.directory and
+  /// output.checkpoint_steps; fingerprint()): a checkpoint restarts only a run of the same
+  /// settings, however they are written (order, 69000 or 6.9e4, line ends, defaults spelled out).
   std::string settings;
+  std::string fingerprint() const;  // every field of every section below: a new field goes in there
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
   /// the wrong length once the mesh is known, an unwritable directory).

@@ -24,7 +24,8 @@ struct Checkpoint {
   EnergyTerms energy;     // accumulated up to state.t
   std::vector<double> diagnostics;  // the integrator's (AdhesionIntegrator::diagnostics)
   BetaOde::Excursion excursion;     // of beta out of [0, previous beta] so far
-  RunResult progress;     // snapshots, step records, peak forces, solve and integrator counts
+  RunResult progress;     // snapshots, peak forces, solve and integrator counts (the step records
+                          // are read back from history.csv)
 };
 
 /// The checkpoint's path in a result directory.
@@ -33,8 +34,10 @@ std::string checkpoint_path(const std::string& directory);
 /// Writes DIR/checkpoint.txt atomically (AtomicFile); throws SolveError when it cannot.
 void write_checkpoint(const std::string& directory, const Checkpoint& c);
 
-/// Reads DIR/checkpoint.txt of a run of `cfg`; throws InputError naming the file when it is
-/// missing, damaged, or was written by a run of other settings.
+/// Reads DIR/checkpoint.txt of a run of `cfg`; throws InputError naming the file and line
+/// when it is missing, damaged (a value outside the state's range: beta outside [0, 1], t
+/// outside [0, T], a NaN or an infinite energy, vectors of the wrong sizes), or was written by
+/// a run of other settings.
 Checkpoint read_checkpoint(const std::string& directory, const Config& cfg);
 
 }  // namespace rccm

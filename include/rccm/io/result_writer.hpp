@@ -9,6 +9,7 @@
 
 #include "rccm/base/config.hpp"
 #include "rccm/io/csv.hpp"
+#include "rccm/io/run_record.hpp"
 #include "rccm/io/vtk_writer.hpp"
 #include "rccm/model/body_state.hpp"
 #include "rccm/model/model.hpp"
@@ -42,6 +43,8 @@ class ResultWriter {
   void step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e);
   void output(const InterfaceState& s, const BodyState& b);
   const std::string& directory() const { return directory_; }
+  /// The records of the steps an earlier run wrote into history.csv up to the resume point.
+  const std::vector<StepRecord>& resumed_steps() const { return resumed_steps_; }
 
  private:
   const Model& model_;
@@ -49,6 +52,7 @@ class ResultWriter {
   std::string directory_;
   std::unique_ptr<CsvStream> history_, curves_;
   VtkWriter vtk_;
+  std::vector<StepRecord> resumed_steps_;
 };
 
 }  // namespace rccm

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# The command line as a hostile or hurried user meets it (issue 15):
+#  1. malformed --set paths and values are bad input (exit 2, the path named), a bare path is a
+#     string, -o DIR writes there, --restart '' is refused;
+#  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
+#  3. --force starts from an empty result set and leaves other files alone;
+#  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
+#  5. a full disk: exit 3, the message names the file that could not be written and does not
+#     claim a report that is not there;
+#  6. SIGINT during a sweep: exit 130, the running case stops at an accepted step, no other
+#     case starts, summary.csv says which cases did not run;
+#  7. a second SIGINT exits at once.
+set -u
+rccm=$1; src=$2
+work=$(mktemp -d); trap 'umount "$work/full" 2>/dev/null; rm -rf "$work"' EXIT
+failed=0; checks=0
+fail() { echo "FAIL $*"; failed=$((failed + 1)); }
+check() { checks=$((checks + 1)); }
+b1="$src/config/b1.cfg"
+short=(--set time.T=0.5 --set 'output.times=[0.25]' --set integrator.method=euler --set time.steps=20)
+
+# 1. --set paths and values.
+expect_bad() {  # expect_bad "message" args...
+  local msg=$1; shift; check
+  "$rccm" run "$b1" -q "${short[@]}" "$@" -o "$work/never" 2>"$work/err" >/dev/null; local rc=$?
+  [ "$rc" -eq 2 ] || fail "$*: exit $rc, want 2 ($(cat "$work/err"))"
+  grep -qF -- "$msg" "$work/err" || fail "$*: message '$(cat "$work/err")' lacks '$msg'"
+  [ -e "$work/never" ] && fail "$*: wrote $work/never" && rm -rf "$work/never"
+}
+expect_bad "--set mesh..nx: '' is not a setting name" --set mesh..nx=3
+expect_bad "--set interface.1x: '1x' is not a setting name" --set interface.1x=3
+expect_bad "--set interface.m u: 'm u' is not a setting name" --set 'interface.m u=3'
+expect_bad "the list has 1 element(s), numbered from 0" --set 'loads.[99999999999999999999].value=1'
+expect_bad "the integer 100000000000000000000 is beyond what libconfig reads" --set 'loads.[0].value=100000000000000000000'
+expect_bad "interface.mu: must be a number (got a string)" --set interface.mu=0.2x
+check; "$rccm" run "$b1" -q --restart '' 2>"$work/err"; rc=$?
+[ "$rc" -eq 2 ] && grep -q -- "--restart: give the directory" "$work/err" || fail "--restart '': exit $rc, $(cat "$work/err")"
+
+check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare path" >/dev/null 2>"$work/err" \
+  || fail "a bare path for output.directory: $(cat "$work/err")"
+[ -s "$work/bare path/history.csv" ] || fail "a bare path for output.directory: no history.csv there"
+check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/dash-o" >/dev/null 2>"$work/err" || fail "-o DIR: $(cat "$work/err")"
+[ -s "$work/dash-o/report.txt" ] || fail "-o DIR: no report there"
+
+# 2. alpha = 0.
+check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \
+  || fail "alpha = 0: $(cat "$work/err")"
+grep -q "integrator: rate-independent" "$work/alpha0/report.txt" 2>/dev/null || fail "alpha = 0 did not run rate-independent"
+
+# 3. --force: an empty result set, other files kept.
+out=$work/forced
+"$rccm" run "$b1" -q "${short[@]}" -o "$out" >/dev/null 2>&1
+echo "my notes" > "$out/notes.txt"
+check; "$rccm" run "$b1" -q --force "${short[@]}" --set 'output.times=[0.3]' -o "$out" >/dev/null 2>"$work/err" \
+  || fail "--force: $(cat "$work/err")"
+[ -e "$out/interface_t0.25.csv" ] && fail "--force: the earlier run's interface_t0.25.csv is still there"
+[ -e "$out/interface_t0.3.csv" ] || fail "--force: no interface_t0.3.csv"
+[ "$(ls "$out"/mesh_*.vtu | wc -l)" -eq "$(grep -c '<DataSet' "$out/results.pvd")" ] || fail "--force: .vtu files of the earlier run left"
+[ -e "$out/notes.txt" ] || fail "--force removed a file rccm did not write"
+
+# 4. A closed pipe.
+out=$work/pipe
+check; "$rccm" run "$b1" -v "${short[@]}" -o "$out" 2>"$work/err" | head -2 >/dev/null
+rc=${PIPESTATUS[0]}
+[ "$rc" -eq 0 ] || fail "rccm run -v | head: exit $rc, want 0 ($(cat "$work/err"))"
+grep -q "status: complete" "$out/report.txt" 2>/dev/null || fail "rccm run -v | head: report.txt not complete"
+
+# 5. A full disk (a 96 kB tmpfs; skipped where it cannot be mounted).
+mkdir -p "$work/full"
+if mount -t tmpfs -o size=96k tmpfs "$work/full" 2>/dev/null; then
+  check; "$rccm" run "$b1" -q --set integrator.method=euler --set time.steps=2000 -o "$work/full/run" >/dev/null 2>"$work/err"; rc=$?
+  [ "$rc" -eq 3 ] || fail "disk full: exit $rc, want 3"
+  grep -q "No space left on device" "$work/err" || fail "disk full: the message does not say why: $(cat "$work/err")"
+  if grep -q "report.txt says" "$work/err"; then
+    grep -q "status: STOPPED" "$work/full/run/report.txt" 2>/dev/null || fail "disk full: the message claims a report that is not there"
+  fi
+  umount "$work/full"
+else
+  echo "note: the full-disk case is skipped (no tmpfs mount here)"
+fi
+
+# 6. SIGINT during a sweep: the first case stops, no other starts.
+out=$work/sweep
+"$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 -o "$out" >"$work/sweep.out" 2>&1 &
+pid=$!
+for _ in $(seq 100); do [ -f "$out/alpha=1/history.csv" ] && [ "$(wc -l < "$out/alpha=1/history.csv")" -gt 20 ] && break; sleep 0.1; done
+kill -s INT "$pid"; wait "$pid"; rc=$?
+check; [ "$rc" -eq 130 ] || fail "sweep SIGINT: exit $rc, want 130"
+[ -e "$out/alpha=2" ] && fail "sweep SIGINT: the next case started"
+grep -q '^alpha=1,1,interrupted' "$out/summary.csv" || fail "sweep SIGINT: summary.csv lacks the interrupted case"
+grep -q '^alpha=2,2,not run' "$out/summary.csv" || fail "sweep SIGINT: summary.csv lacks the case not run"
+
+# 7. A second SIGINT: at once, without waiting for the step (B1 refined 16 times: steps of ~0.1 s).
+out=$work/twice
+"$rccm" run "$b1" -q --set mesh.nx=512 --set mesh.ny=32 -o "$out" >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 200); do [ -s "$out/history.csv" ] && break; sleep 0.1; done
+kill -s INT "$pid"; kill -s INT "$pid"; wait "$pid"; rc=$?
+check; [ "$rc" -eq 130 ] || fail "second SIGINT: exit $rc, want 130"
+
+echo "$((checks - failed)) passed, $failed failed"
+[ "$failed" -eq 0 ]
