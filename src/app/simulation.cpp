@@ -18,6 +18,8 @@ RunResult Simulation::run() {
     recorder.step(a);  // energy, files, logs, checkpoints
     throw_if_stop_requested(a.step, a.t);
   });
+  if (cfg_.integrator.method == Method::Arkode)  // the energy terms to the order of the scheme
+    ode.track_midpoints(make_contact_solver(cfg_.solver));
   recorder.start(ode);  // beta0 at t = 0, or the checkpoint's state
   const auto integrator = make_integrator(ode, cfg_, recorder.initial_step());
   recorder.attach(*integrator);

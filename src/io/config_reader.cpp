@@ -600,10 +600,17 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
 }
 
 /// The line of every setting, by path, for messages after reading (Config::where).
-void record_lines(const Setting& s, std::map<std::string, int>& lines) {
-  if (!s.isRoot()) lines[s.getPath()] = static_cast<int>(s.getSourceLine());
-  if (s.isAggregate())
-    for (int i = 0; i < s.getLength(); ++i) record_lines(s[i], lines);
+/// The paths are built on the way down: libconfig's getPath() searches each element's index
+/// in its parent, quadratic over a long array (a 1e5-node g0 took seconds). The numbers of an
+/// array are not recorded: messages name the array.
+void record_lines(const Setting& s, const std::string& path, std::map<std::string, int>& lines) {
+  if (!path.empty()) lines[path] = static_cast<int>(s.getSourceLine());
+  if (s.isGroup() || s.isList())
+    for (int i = 0; i < s.getLength(); ++i) {
+      const Setting& child = s[i];
+      const std::string name = s.isList() ? "[" + std::to_string(i) + "]" : std::string(child.getName());
+      record_lines(child, path.empty() ? name : path + "." + name, lines);
+    }
 }
 
 }  // namespace
@@ -617,7 +624,7 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
   Reader reader(path);
   try {
     Config c = read(reader, cfg.getRoot(), path);
-    record_lines(cfg.getRoot(), c.lines);
+    record_lines(cfg.getRoot(), "", c.lines);
     c.settings = c.fingerprint();
     return c;
   } catch (const libconfig::SettingException& e) {

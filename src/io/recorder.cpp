@@ -95,8 +95,14 @@ void Recorder::attach(BetaIntegrator& integrator) {
 
 void Recorder::step(const AcceptedStep& a) {
   body_ = body_state(*model_, a.state);
-  if (!energy_) energy_ = std::make_unique<EnergyBalance>(*model_, a.state, body_);
-  else energy_->add(a.state, body_);
+  if (!energy_) {
+    energy_ = std::make_unique<EnergyBalance>(*model_, a.state, body_);
+  } else if (a.midpoint) {
+    const BodyState mid_body = body_state(*model_, *a.midpoint);
+    energy_->add(a.state, body_, a.midpoint, &mid_body);
+  } else {
+    energy_->add(a.state, body_);
+  }
   result_.peak_force.resize(body_.force.size(), 0.0);
   result_.peak_time.resize(body_.force.size(), 0.0);
   for (std::size_t k = 0; k < body_.force.size(); ++k)
@@ -109,7 +115,22 @@ void Recorder::step(const AcceptedStep& a) {
   if (options_.progress) progress_line(a, cfg_.time.T);
   if (writer_ && integrator_ && cfg_.output.checkpoint_steps > 0 && a.step % cfg_.output.checkpoint_steps == 0)
     save_checkpoint();
+  note_crawl(a);
   if (options_.observer) options_.observer(a);
+}
+
+void Recorder::note_crawl(const AcceptedStep& a) {
+  // A run whose steps stay tiny says so once, while it runs, instead of crawling silently.
+  tiny_steps_ = a.dt > 0 && a.dt < 1e-7 * cfg_.time.T ? tiny_steps_ + 1 : 0;
+  if (tiny_steps_ != 100) return;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "t = %g s: 100 accepted steps in a row below 1e-7 T (dt = %.3g s): the run crawls; if it does not pass, "
+                "loosen integrator.rtol, raise integrator.min_step, or look for extreme interface values "
+                "(interface.Cn, Ct, mu)",
+                a.t, a.dt);
+  crawl_notes_.push_back(text);
+  if (options_.write_files) std::fprintf(stderr, "\nrccm: note: %s\n", text);
 }
 
 void Recorder::save_checkpoint() {
@@ -159,6 +180,7 @@ RunResult Recorder::close(const std::string& stopped) {
   result_.solves = ode_->totals();
   result_.energy = energy_->terms();
   result_.warnings = integrator_->warnings();
+  result_.warnings.insert(result_.warnings.end(), crawl_notes_.begin(), crawl_notes_.end());
   for (const std::string& w : ode_->warnings()) result_.warnings.push_back(w);
   result_.wall_seconds = seconds();
   if (writer_) write_reports(writer_->directory(), cfg_, result_);

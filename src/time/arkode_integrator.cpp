@@ -49,7 +49,9 @@ struct ArkodeIntegrator::Impl {
   std::string arkode_message;   // ARKODE's own last error message
   std::exception_ptr stop;       // anything else thrown after an accepted step (a stop request)
 
-  Impl(BetaSystem& o, const IntegratorParams& p, double T) : ode(o) {
+  ArkodeScheme scheme;
+
+  Impl(BetaSystem& o, const IntegratorParams& p, double T) : ode(o), scheme(p.scheme) {
     const sunindextype n = ode.size();
     check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
     y = check_ptr(N_VNew_Serial(n, ctx), "N_VNew_Serial");
@@ -193,17 +195,22 @@ void ArkodeIntegrator::advance(double t_out) {
   if (!m.arkode_message.empty()) msg << ": " << m.arkode_message;
   if (!m.contact_failure.empty()) msg << "\n  last contact failure: " << m.contact_failure;
   const Eigen::VectorXd& beta = m.ode.committed_beta();
+  const bool adhesion_gone = 2 * (beta.array() < 1e-3).count() > beta.size();
   msg << "\n  state: min beta " << beta.minCoeff() << ", " << (beta.array() < 1e-3).count() << " of " << beta.size()
       << " contact nodes with beta < 1e-3";
-  if (2 * (beta.array() < 1e-3).count() > beta.size())
-    msg << ": most adhesion is gone and the body may be nearly free (held by forces ~ beta^2 C u)";
+  if (adhesion_gone) msg << ": most adhesion is gone and the body may be nearly free (held by forces ~ beta^2 C u)";
   if (flag == ARK_TOO_MUCH_WORK)
-    msg << "\n  raise integrator.max_steps, or use scheme = \"dirk\" (an explicit scheme on this stiff ODE needs tiny steps)";
+    msg << "\n  raise integrator.max_steps"
+        << (m.scheme == ArkodeScheme::Erk ? ", or use scheme = \"dirk\" (an explicit scheme on this stiff ODE needs tiny steps)"
+                                           : ", or loosen integrator.rtol");
   else if (flag == ARK_REPTD_RHSFUNC_ERR || flag == ARK_UNREC_RHSFUNC_ERR)
     msg << "\n  ARKODE cut its step and the contact solve still failed: see the contact failure above";
+  else if ((flag == ARK_ERR_FAILURE || flag == ARK_CONV_FAILURE) && adhesion_gone)
+    msg << "\n  the step size collapsed as the adhesion went: the body may be nearly free; restrain it, reduce the "
+           "load, or lower integrator.min_step";
   else if (flag == ARK_ERR_FAILURE || flag == ARK_CONV_FAILURE)
-    msg << "\n  the step size collapsed: if most of the adhesion is gone the body may be nearly free "
-           "(held by forces ~ beta^2 C u); restrain it, reduce the load, or lower integrator.min_step";
+    msg << "\n  the step size collapsed (beta or the contact state changes abruptly here): lower integrator.min_step, "
+           "loosen integrator.rtol, or check the interface parameters for extreme values";
   else
     msg << "\n  loosen integrator.rtol/atol, lower integrator.max_step, or see the contact failure above";
   throw SolveError(msg.str());

@@ -56,8 +56,7 @@ void BetaOde::check_finite(double t, const Eigen::VectorXd& beta, const char* wh
     if (!std::isfinite(beta[i])) {
       std::ostringstream m;
       m << "step " << step_ + 1 << ", t = " << t << " s: " << what << " beta at contact node " << i << " is "
-        << beta[i] << ": the integrator diverged; tighten integrator.rtol, lower integrator.max_step, or use "
-        << "scheme = \"dirk\"";
+        << beta[i] << ": the integrator diverged; tighten integrator.rtol or lower integrator.max_step";
       throw SolveError(m.str());
     }
 }
@@ -103,6 +102,35 @@ void BetaOde::resume(const InterfaceState& state, int step, const SolveCounts& t
   last_t_ = -1;
 }
 
+void BetaOde::track_midpoints(std::unique_ptr<ContactSolver> solver) { midpoint_solver_ = std::move(solver); }
+
+Eigen::VectorXd BetaOde::rate_at(const Eigen::VectorXd& beta, const Eigen::VectorXd& u) const {
+  const Interface& I = model_.interface();
+  Eigen::VectorXd f(size());
+  for (int i = 0; i < size(); ++i) f[i] = I.law(i).beta_rate(beta[i], I.layout.local(u, i));
+  return f;
+}
+
+InterfaceState BetaOde::midpoint(double t, const Eigen::VectorXd& beta, const ContactSolution& s) {
+  const double h = t - committed_.t, t_mid = committed_.t + 0.5 * h;
+  // Cubic Hermite at the middle: (b0 + b1)/2 + h (f0 - f1)/8, kept within [b1, b0] (beta falls).
+  const Eigen::VectorXd f0 = rate_at(committed_.beta, committed_.u), f1 = rate_at(beta, s.u);
+  const Eigen::VectorXd beta_mid =
+      (0.5 * (committed_.beta + beta) + h / 8 * (f0 - f1)).cwiseMax(beta).cwiseMin(committed_.beta);
+  const double start = now();
+  ContactSolution mid;
+  try {
+    mid = solve_contact(model_, *midpoint_solver_, t_mid, beta_mid, committed_, &s);
+  } catch (const SolveError& e) {
+    throw SolveError("step " + std::to_string(step_ + 1) + ", the state halfway through it, " + e.what());
+  }
+  totals_.add(mid, now() - start);
+  step_counts_.add(mid, now() - start);
+  InterfaceState m;
+  m.commit(t_mid, beta_mid, mid);
+  return m;
+}
+
 void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
   // beta in [0, 1] and never increasing (docs/MODEL.md s6): the scheme's round-off is
   // clamped; more than that is recorded for warnings(), a NaN or Inf stops the run.
@@ -115,10 +143,13 @@ void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
   const double t_old = committed_.t;
   const ContactSolution& s = solve(t, beta);
   const ContactResiduals r = residuals(model_.contact_problem(t, beta, committed_.u), s);
+  const bool with_midpoint = midpoint_solver_ && step_ >= 0 && t > committed_.t;
+  if (with_midpoint) midpoint_ = midpoint(t, beta, s);
   committed_.commit(t, beta, s);
   ++step_;
   const double clock = now();
-  const AcceptedStep step{step_, t, t - t_old, committed_, s, r, step_counts_, clock - step_start_};
+  const AcceptedStep step{step_,       t, t - t_old, committed_, s, r, step_counts_, clock - step_start_,
+                          with_midpoint ? &midpoint_ : nullptr};
   step_counts_ = SolveCounts{};
   step_start_ = clock;
   if (observer_) observer_(step);

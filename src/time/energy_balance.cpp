@@ -5,6 +5,24 @@
 
 namespace rccm {
 
+namespace {
+
+double dot(double a, double b) { return a * b; }
+template <class A, class B>
+double dot(const A& a, const B& b) {
+  return a.dot(b);
+}
+
+/// int X dY over a step, from X and Y at its start, middle and end: exact for X and Y
+/// quadratic in time (Simpson's rule for X dY/dt); without the middle, the trapezoid rule.
+template <class V>
+double stieltjes(const V& x0, const V* xm, const V& x1, const V& y0, const V* ym, const V& y1) {
+  if (!xm) return 0.5 * dot(x0 + x1, y1 - y0);
+  return dot(x0, -y0 / 2 + 2 * *ym / 3 - y1 / 6) + dot(*xm, 2 * (y1 - y0) / 3) + dot(x1, y0 / 6 - 2 * *ym / 3 + y1 / 2);
+}
+
+}  // namespace
+
 double EnergyTerms::relative_error() const {
   const double scale = std::max({std::abs(external_work), std::abs(strain_energy), std::abs(free_energy_change),
                                  damage_dissipation, friction_dissipation, 1e-300});
@@ -30,22 +48,39 @@ void EnergyBalance::resume(const InterfaceState& s, const BodyState& b, const En
   terms_ = terms;
 }
 
-void EnergyBalance::add(const InterfaceState& s, const BodyState& b) {
+void EnergyBalance::add(const InterfaceState& s, const BodyState& b, const InterfaceState* mid,
+                        const BodyState* mid_body) {
   const Interface& I = model_.interface();
   const Layout& L = I.layout;
   const InterfaceState& o = previous_;
-  terms_.external_work += 0.5 * (previous_body_.f_ext + b.f_ext).dot(b.u - previous_body_.u);
+  const BodyState& ob = previous_body_;
+  terms_.external_work += stieltjes<Eigen::VectorXd>(ob.f_ext, mid_body ? &mid_body->f_ext : nullptr, b.f_ext, ob.u,
+                                                     mid_body ? &mid_body->u : nullptr, b.u);
   terms_.strain_energy = 0.5 * b.u.dot(model_.stiffness() * b.u);
   terms_.free_energy_change = free_energy(s) - psi0_;
+  // Pair i's components [first, first + n) of a stacked vector.
+  const auto part = [](const Eigen::VectorXd& v, Eigen::Index first, Eigen::Index n) {
+    return Eigen::VectorXd(v.segment(first, n));
+  };
   for (int i = 0; i < I.size(); ++i) {
     const RccmLaw& law = I.law(i);
-    const double G_old = law.thermodynamic_force(o.beta[i], L.local(o.u, i));
-    const double G_new = law.thermodynamic_force(s.beta[i], L.local(s.u, i));
-    terms_.damage_dissipation += I.pairs[i].measure * 0.5 * (G_old + G_new) * (s.beta[i] - o.beta[i]);
-    const Eigen::Index n = L.normal(i);
-    terms_.friction_dissipation -=
-        0.5 * (L.tangential(o.Rbar, i) + L.tangential(s.Rbar, i)).dot(L.tangential(s.u, i) - L.tangential(o.u, i));
-    terms_.normal_contact_work += 0.5 * (o.Rbar[n] + s.Rbar[n]) * (s.u[n] - o.u[n]);
+    const double G0 = law.thermodynamic_force(o.beta[i], L.local(o.u, i)),
+                 G1 = law.thermodynamic_force(s.beta[i], L.local(s.u, i)),
+                 Gm = mid ? law.thermodynamic_force(mid->beta[i], L.local(mid->u, i)) : 0.0;
+    terms_.damage_dissipation += I.pairs[i].measure * stieltjes(G0, mid ? &Gm : nullptr, G1, o.beta[i],
+                                                                mid ? &mid->beta[i] : nullptr, s.beta[i]);
+    for (const bool normal : {false, true}) {
+      const Eigen::Index first = normal ? L.normal(i) : L.offset(i), n = normal ? 1 : L.tangential_size();
+      const Eigen::VectorXd Rm = mid ? part(mid->Rbar, first, n) : Eigen::VectorXd(),
+                            um = mid ? part(mid->u, first, n) : Eigen::VectorXd();
+      const double work = stieltjes<Eigen::VectorXd>(part(o.Rbar, first, n), mid ? &Rm : nullptr,
+                                                     part(s.Rbar, first, n), part(o.u, first, n), mid ? &um : nullptr,
+                                                     part(s.u, first, n));
+      if (normal)
+        terms_.normal_contact_work += work;  // Rbar_n du_n: 0 by Signorini
+      else
+        terms_.friction_dissipation -= work;  // -Rbar_t . du_t
+    }
   }
   previous_ = s;
   previous_body_ = b;

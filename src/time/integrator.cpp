@@ -49,7 +49,11 @@ std::vector<double> time_grid(double T, int steps, const std::vector<double>& ou
 std::vector<double> stop_times(double T, const std::vector<double>& output_times) {
   std::vector<double> t = output_times;
   t.push_back(T);
-  return merge_times(t, T);
+  std::vector<double> stops = merge_times(t, T);
+  // An output time of 0 is the initial state: a stop that needs no step.
+  if (!output_times.empty() && *std::min_element(output_times.begin(), output_times.end()) <= 1e-12 * T)
+    stops.insert(stops.begin(), 0.0);
+  return stops;
 }
 
 std::unique_ptr<BetaIntegrator> make_integrator(BetaSystem& ode, const Config& cfg, double initial_step) {

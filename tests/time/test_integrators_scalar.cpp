@@ -118,5 +118,6 @@ TEST_CASE("the time grids: equal steps with the output times added, stops at the
           "[integrator]") {
   const std::vector<double> grid = time_grid(10.0, 4, {3.0, 5.0, 0.0});
   CHECK(grid == std::vector<double>{2.5, 3.0, 5.0, 7.5, 10.0});
-  CHECK(stop_times(10.0, {3.0, 10.0, 0.0}) == std::vector<double>{3.0, 10.0});
+  CHECK(stop_times(10.0, {3.0, 10.0, 0.0}) == std::vector<double>{0.0, 3.0, 10.0});
+  CHECK(stop_times(10.0, {3.0}) == std::vector<double>{3.0, 10.0});
 }

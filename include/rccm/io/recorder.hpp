@@ -68,6 +68,7 @@ class Recorder {
 
  private:
   RunResult close(const std::string& stopped);
+  void note_crawl(const AcceptedStep& a);
   void save_checkpoint();
   double seconds() const;
 
@@ -84,6 +85,8 @@ class Recorder {
   BodyState body_;            // of the last accepted step
   IntegratorStats earlier_;   // counts of the run a restart continues
   RunResult result_;
+  int tiny_steps_ = 0;                    // accepted steps in a row below 1e-7 T
+  std::vector<std::string> crawl_notes_;  // said once, and in the report's warnings
 };
 
 }  // namespace rccm

@@ -39,6 +39,7 @@ struct AcceptedStep {
   ContactResiduals residuals;       // its Signorini-Coulomb residuals
   SolveCounts counts;               // solves of this step (stages and commit)
   double cpu_seconds = 0;           // wall time of this step
+  const InterfaceState* midpoint = nullptr;  // the state halfway through the step (track_midpoints)
 };
 
 class BetaOde final : public BetaSystem {
@@ -58,6 +59,12 @@ class BetaOde final : public BetaSystem {
   void rate_independent_beta(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> out) override;
   /// Also solves the contact at the accepted state, commits it and notifies the observer.
   void accept(double t, Eigen::Ref<Eigen::VectorXd> beta) override;
+
+  /// From now on each accepted step also gives the state halfway through it: beta from the
+  /// cubic Hermite interpolant of (beta, f) at both ends (the accuracy of a 4th-order scheme),
+  /// the contact solved there by `solver` (its own, so that the run's solves are untouched).
+  /// The energy balance integrates over it to the scheme's order (EnergyBalance).
+  void track_midpoints(std::unique_ptr<ContactSolver> solver);
 
   const Model& model() const { return model_; }
   const InterfaceState& committed() const { return committed_; }
@@ -85,6 +92,10 @@ class BetaOde final : public BetaSystem {
 
  private:
   const ContactSolution& solve(double t, const Eigen::VectorXd& beta);
+  /// The state halfway from the committed one to (t, beta) whose contact solution is s.
+  InterfaceState midpoint(double t, const Eigen::VectorXd& beta, const ContactSolution& s);
+  /// d beta / dt at a state: the law at its displacement.
+  Eigen::VectorXd rate_at(const Eigen::VectorXd& beta, const Eigen::VectorXd& u) const;
   /// Throws SolveError naming the step, t and the first pair whose beta is NaN or Inf.
   void check_finite(double t, const Eigen::VectorXd& beta, const char* what) const;
 
@@ -100,6 +111,8 @@ class BetaOde final : public BetaSystem {
   int step_ = -1;
   Excursion excursion_;
   double step_start_ = 0;  // wall clock at the previous accepted step
+  std::unique_ptr<ContactSolver> midpoint_solver_;
+  InterfaceState midpoint_;
 };
 
 }  // namespace rccm

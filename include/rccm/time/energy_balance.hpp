@@ -1,8 +1,12 @@
 // The energy balance of a run (docs/MODEL.md s3):
 //   work of the external loads = bulk strain energy + change of interface free energy
-//                                + damage dissipation + friction dissipation,
-// each accumulated over accepted steps with the trapezoid rule. Exact for the continuous
-// problem; a time-discrete run violates it by O(dt^p).
+//                                + damage dissipation + friction dissipation.
+// The strain and free energies are functions of the state; the work and the dissipations are
+// integrals int X dY along the run (f_ext . du, G dbeta, -Rbar_t . du_t), summed over the
+// accepted steps: with the state halfway through each step (an adaptive run,
+// BetaOde::track_midpoints) by the Stieltjes form of Simpson's rule, exact for X and Y
+// quadratic in time, else by the trapezoid rule. Exact for the continuous problem; a
+// time-discrete run violates it by an amount that shrinks with the step.
 #pragma once
 
 #include "rccm/model/body_state.hpp"
@@ -30,8 +34,10 @@ class EnergyBalance {
  public:
   EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body);
 
-  /// Adds the step from the previous accepted state to this one.
-  void add(const InterfaceState& s, const BodyState& b);
+  /// Adds the step from the previous accepted state to this one (s, b), through the state
+  /// halfway (mid, mid_body) when given.
+  void add(const InterfaceState& s, const BodyState& b, const InterfaceState* mid = nullptr,
+           const BodyState* mid_body = nullptr);
   /// Takes up the balance at a checkpoint: `terms` accumulated up to the state (s, b).
   void resume(const InterfaceState& s, const BodyState& b, const EnergyTerms& terms);
   const EnergyTerms& terms() const { return terms_; }

@@ -61,7 +61,7 @@ class FixedStepIntegrator : public BetaIntegrator {
 /// output times, merged (times closer than 1e-12 T are one).
 std::vector<double> time_grid(double T, int steps, const std::vector<double>& output_times);
 
-/// The times a run stops at: the output times in (0, T), and T.
+/// The times a run stops at: the output times (0 included, the initial state), and T.
 std::vector<double> stop_times(double T, const std::vector<double>& output_times);
 
 /// The integrator of cfg.integrator.method on `ode`; `initial_step` > 0 overrides
