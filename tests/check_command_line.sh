@@ -42,6 +42,8 @@ check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare pat
 check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/dash-o" >/dev/null 2>"$work/err" || fail "-o DIR: $(cat "$work/err")"
 [ -s "$work/dash-o/report.txt" ] || fail "-o DIR: no report there"
 
+check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rccm --version: $("$rccm" --version)"
+
 # 2. alpha = 0.
 check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \
   || fail "alpha = 0: $(cat "$work/err")"

@@ -1,6 +1,11 @@
 #!/usr/bin/python3
-"""Opens the .pvd and every .vtu of a run with VTK's own XML reader and checks them against
-the interface CSV: same beta at the contact nodes, mesh sizes as announced, no NaN.
+"""Opens every frame of a run with VTK's own XML readers (the binary, zlib-compressed files
+ParaView reads) and checks them:
+  - results.pvd and interface.pvd list the same times, a frame at t = 0 among them;
+  - the bodies: no NaN, no interface field on bulk nodes, stress and strain full symmetric
+    tensors with sigma_zz = nu (sigma_xx + sigma_yy) and eps_zz = 0 in plane strain;
+  - the interface: beta, u, Rbar equal the interface CSV at the output times, p = r / a, and
+    the global vector r_xyz has the length of the local r.
 Exit 77 (skipped) when python3-vtk9 is not installed."""
 import csv
 import math
@@ -12,28 +17,60 @@ try:
     import vtk
     from vtk.util.numpy_support import vtk_to_numpy
 except ImportError:
-    print("skipped: python3-vtk9 is not installed (tools/install-deps installs it)")
+    print("skipped: python3-vtk9 is not installed (tools/install-deps --tests installs it)")
     sys.exit(77)
 
-run = sys.argv[1]
-datasets = [(float(d.get("timestep")), d.get("file")) for d in ET.parse(os.path.join(run, "results.pvd")).getroot().iter("DataSet")]
-assert len(datasets) >= 1, "empty .pvd"
-for t, name in datasets:
-    reader = vtk.vtkXMLUnstructuredGridReader()
+run, nu = sys.argv[1], float(sys.argv[2]) if len(sys.argv) > 2 else 0.333
+
+
+def collection(name):
+    return [(float(d.get("timestep")), d.get("file")) for d in ET.parse(os.path.join(run, name)).getroot().iter("DataSet")]
+
+
+def read(reader, name):
     reader.SetFileName(os.path.join(run, name))
     reader.Update()
-    grid = reader.GetOutput()
-    assert grid.GetNumberOfPoints() > 0 and grid.GetNumberOfCells() > 0, name
-    pd, cd = grid.GetPointData(), grid.GetCellData()
-    for arr in (pd.GetArray(i) for i in range(pd.GetNumberOfArrays())):
-        assert not any(math.isnan(v) for v in vtk_to_numpy(arr).ravel()), f"NaN in {arr.GetName()}"
-    assert cd.GetArray("von Mises [MPa]") is not None
-    beta = vtk_to_numpy(pd.GetArray("beta"))
-    contact = vtk_to_numpy(pd.GetArray("contact node"))
-    with open(os.path.join(run, f"interface_t{t:g}.csv")) as f:
-        rows = list(csv.DictReader(f))
-    beta_vtk = [b for b, c in zip(beta, contact) if c > 0.5]
-    assert len(beta_vtk) == len(rows), (len(beta_vtk), len(rows))
-    for b, row in zip(beta_vtk, rows):
-        assert abs(b - float(row["beta"])) <= 1e-9 * max(1.0, abs(b)), (b, row["beta"])
-print(f"{len(datasets)} passed, 0 failed")
+    return reader.GetOutput()
+
+
+def arrays(data):
+    return {data.GetArrayName(i): vtk_to_numpy(data.GetArray(i)) for i in range(data.GetNumberOfArrays())}
+
+
+bodies, interface = collection("results.pvd"), collection("interface.pvd")
+assert [t for t, _ in bodies] == [t for t, _ in interface], "the two collections list other times"
+assert bodies[0][0] == 0.0, "no frame at t = 0"
+checked = 0
+for (t, vtu), (_, vtp) in zip(bodies, interface):
+    grid = read(vtk.vtkXMLUnstructuredGridReader(), vtu)
+    assert grid.GetNumberOfPoints() > 0 and grid.GetNumberOfCells() > 0, vtu
+    pd, cd = arrays(grid.GetPointData()), arrays(grid.GetCellData())
+    assert "beta" not in pd and "status" not in pd, f"{vtu}: interface fields on the bulk nodes"
+    for name, a in list(pd.items()) + list(cd.items()):
+        assert not any(math.isnan(v) for v in a.ravel()), f"{vtu}: NaN in {name}"
+    for name in ("strain", "stress"):
+        T = cd[name].reshape(-1, 3, 3)
+        assert abs(T - T.transpose(0, 2, 1)).max() <= 1e-12 * max(1.0, abs(T).max()), f"{vtu}: {name} not symmetric"
+    S, E = cd["stress"].reshape(-1, 3, 3), cd["strain"].reshape(-1, 3, 3)
+    assert abs(S[:, 2, 2] - nu * (S[:, 0, 0] + S[:, 1, 1])).max() <= 1e-9 * max(1.0, abs(S).max()), "sigma_zz"
+    assert abs(E[:, 2, 2]).max() == 0.0, "eps_zz of plane strain"
+
+    poly = read(vtk.vtkXMLPolyDataReader(), vtp)
+    ip = arrays(poly.GetPointData())
+    assert poly.GetNumberOfLines() == poly.GetNumberOfPoints() - 1, f"{vtp}: the interface is not a chain of lines"
+    p, r, a = ip["p"], ip["r"], ip["tributary"]
+    assert abs(p - r / a[:, None]).max() <= 1e-12 * max(1.0, abs(p).max()), f"{vtp}: p != r / a"
+    lr, lg = (r ** 2).sum(axis=1) ** 0.5, (ip["r_xyz"] ** 2).sum(axis=1) ** 0.5
+    assert abs(lr - lg).max() <= 1e-12 * max(1.0, lr.max()), f"{vtp}: |r_xyz| != |r|"
+    path = os.path.join(run, f"interface_t{t:.12g}.csv")
+    if os.path.exists(path):
+        with open(path) as f:
+            rows = list(csv.DictReader(f))
+        assert len(rows) == poly.GetNumberOfPoints(), (len(rows), poly.GetNumberOfPoints())
+        for i, row in enumerate(rows):
+            for mine, col in ((ip["beta"][i], "beta"), (ip["u"][i][1], "u_n [mm]"), (ip["u"][i][0], "u_t [mm]"),
+                              (ip["Rbar"][i][1], "Rbar_n [N]"), (ip["Rbar"][i][0], "Rbar_t [N]")):
+                assert abs(mine - float(row[col])) <= 1e-9 * max(1.0, abs(mine)), (vtp, i, col, mine, row[col])
+        checked += 1
+assert checked >= 1, "no frame at an output time"
+print(f"{len(bodies)} passed, 0 failed")

@@ -3,6 +3,9 @@
 #include "rccm/io/atomic_file.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/io/config_reader.hpp"
+#include "rccm/io/csv.hpp"
+
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <cstdio>
@@ -128,39 +131,51 @@ void print_growth(std::ostream& out, const std::vector<BenchRow>& rows) {
   out << line;
 }
 
+namespace {
+
+/// The figures of a row, named as in the CSV header and the JSON keys.
+std::vector<std::pair<std::string, double>> named_figures(const BenchRow& row) {
+  const RunResult& r = row.result;
+  const Figures f = figures(r);
+  return {{"unknowns", r.dofs},
+          {"contact_nodes", r.contact_nodes},
+          {"steps", double(r.integrator.steps)},
+          {"rejected", double(r.integrator.rejected)},
+          {"contact_solves", double(r.solves.contact_solves)},
+          {"sweeps_mean", f.sweeps_mean},
+          {"sweeps_max", r.solves.max_sweeps},
+          {"us_per_solve", f.us_per_solve},
+          {"ms_per_step", f.ms_per_step},
+          {"setup_s", f.setup},
+          {"wall_s", f.wall},
+          {"peak_rss_mb", row.peak_rss_mb},
+          {"paper_s", row.bench.paper_seconds}};
+}
+
+}  // namespace
+
 void write_bench_csv(const std::string& path, const std::vector<BenchRow>& rows) {
   AtomicFile file(path);
-  std::ostream& out = file.stream();
-  out << "case,unknowns,contact_nodes,steps,rejected,contact_solves,sweeps_mean,sweeps_max,us_per_solve,"
-         "ms_per_step,setup_s,wall_s,peak_rss_mb,paper_s\n";
+  std::vector<std::string> header = {"case"};
+  for (const auto& [name, value] : named_figures(rows.front())) header.push_back(name);
+  file.stream() << csv_line(header) << "\n";
   for (const BenchRow& row : rows) {
-    const RunResult& r = row.result;
-    const Figures f = figures(r);
-    out << '"' << row.bench.name << "\"," << r.dofs << "," << r.contact_nodes << "," << r.integrator.steps << ","
-        << r.integrator.rejected << "," << r.solves.contact_solves << "," << f.sweeps_mean << ","
-        << r.solves.max_sweeps << "," << f.us_per_solve << "," << f.ms_per_step << "," << f.setup << "," << f.wall
-        << "," << row.peak_rss_mb << "," << row.bench.paper_seconds << "\n";
+    std::vector<std::string> line = {row.bench.name};
+    for (const auto& [name, value] : named_figures(row)) line.push_back(csv_number(value));
+    file.stream() << csv_line(line) << "\n";
   }
   file.commit();
 }
 
 void write_bench_json(const std::string& path, const std::vector<BenchRow>& rows) {
-  AtomicFile file(path);
-  std::ostream& out = file.stream();
-  out << "[\n";
-  for (std::size_t k = 0; k < rows.size(); ++k) {
-    const BenchRow& row = rows[k];
-    const RunResult& r = row.result;
-    const Figures f = figures(r);
-    out << "  {\"case\": \"" << row.bench.name << "\", \"unknowns\": " << r.dofs
-        << ", \"contact_nodes\": " << r.contact_nodes << ", \"steps\": " << r.integrator.steps
-        << ", \"rejected\": " << r.integrator.rejected << ", \"contact_solves\": " << r.solves.contact_solves
-        << ", \"sweeps_mean\": " << f.sweeps_mean << ", \"sweeps_max\": " << r.solves.max_sweeps
-        << ", \"us_per_solve\": " << f.us_per_solve << ", \"ms_per_step\": " << f.ms_per_step
-        << ", \"setup_s\": " << f.setup << ", \"wall_s\": " << f.wall << ", \"peak_rss_mb\": " << row.peak_rss_mb
-        << ", \"paper_s\": " << row.bench.paper_seconds << "}" << (k + 1 < rows.size() ? "," : "") << "\n";
+  nlohmann::json table = nlohmann::json::array();
+  for (const BenchRow& row : rows) {
+    nlohmann::json entry = {{"case", row.bench.name}};
+    for (const auto& [name, value] : named_figures(row)) entry[name] = value;
+    table.push_back(entry);
   }
-  out << "]\n";
+  AtomicFile file(path);
+  file.stream() << table.dump(2) << "\n";
   file.commit();
 }
 

@@ -18,10 +18,6 @@
 #include <thread>
 #include <unistd.h>
 
-#ifndef RCCM_VERSION
-#define RCCM_VERSION "unknown"
-#endif
-
 namespace {
 
 void print_totals(const rccm::RunResult& r) {
@@ -64,8 +60,8 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"rccm " RCCM_VERSION ": RCCM interface (contact, Coulomb friction, adhesion) by the bipotential method"};
-  app.set_version_flag("--version", "rccm " RCCM_VERSION);
+  CLI::App app{"rccm " RCCM_VERSION_STRING ": RCCM interface (contact, Coulomb friction, adhesion) by the bipotential method"};
+  app.set_version_flag("--version", "rccm " RCCM_VERSION_STRING);
   app.require_subcommand(1);
   std::string config_file, output_dir;
   std::vector<std::string> overrides, integrators{"arkode", "euler"};

@@ -523,7 +523,9 @@ OutputParams read_output(const Reader& r, const Setting& root, double T) {
   OutputParams O;
   const Setting* o = r.optional_group(root, "output");
   if (!o) return O;
-  r.only(*o, {"directory", "times", "watch", "probes", "checkpoint_steps"});
+  r.only(*o, {"directory", "times", "watch", "probes", "checkpoint_steps", "every"});
+  O.every = r.integer(*o, "every", O.every);
+  if (o->exists("every")) r.check(O.every >= 0, (*o)["every"], "must be >= 0 (0: frames at the output times only)", O.every);
   O.checkpoint_steps = r.integer(*o, "checkpoint_steps", O.checkpoint_steps);
   if (o->exists("checkpoint_steps"))
     r.check(O.checkpoint_steps >= 0, (*o)["checkpoint_steps"], "must be >= 0 (0: a checkpoint only when the run stops)",

@@ -111,6 +111,8 @@ void Recorder::step(const AcceptedStep& a) {
   result_.steps.push_back({a.step, a.t, a.dt, a.counts.contact_solves, a.counts.sweeps_per_solve(),
                            a.counts.max_sweeps, a.cpu_seconds});
   if (writer_) writer_->step(a, body_, energy_->terms());
+  if (writer_ && (a.step == 0 || (cfg_.output.every > 0 && a.step % cfg_.output.every == 0)))
+    writer_->frame(a.state, body_);
   if (options_.step_log) log_step(*options_.step_log, a);
   if (options_.progress) progress_line(a, cfg_.time.T);
   if (writer_ && integrator_ && cfg_.output.checkpoint_steps > 0 && a.step % cfg_.output.checkpoint_steps == 0)

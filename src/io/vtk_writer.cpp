@@ -1,126 +1,154 @@
 #include "rccm/io/vtk_writer.hpp"
 
-#include "rccm/io/atomic_file.hpp"
 #include "rccm/fem/elasticity.hpp"
-#include "rccm/base/errors.hpp"
+#include "rccm/io/vtk_file.hpp"
 
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 
 namespace rccm {
 
 namespace {
 
-/// Von Mises stress of a plane state; sigma_zz = nu (sigma_xx + sigma_yy) in plane strain.
-double von_mises(const Eigen::Vector3d& s, double szz) {
-  const double a = s[0] - s[1], b = s[1] - szz, c = szz - s[0];
-  return std::sqrt(0.5 * (a * a + b * b + c * c) + 3 * s[2] * s[2]);
-}
-
-void data_array(std::ostream& out, const char* name, int components, const Eigen::MatrixXd& values) {
-  out << "<DataArray type=\"Float64\" Name=\"" << name << "\" NumberOfComponents=\"" << components
-      << "\" format=\"ascii\">\n";
-  char buf[32];
-  for (Eigen::Index j = 0; j < values.cols(); ++j) {
-    for (Eigen::Index c = 0; c < values.rows(); ++c) {
-      std::snprintf(buf, sizeof buf, "%.10g ", values(c, j));
-      out << buf;
-    }
-    out << "\n";
-  }
-  out << "</DataArray>\n";
-}
-
-}  // namespace
-
-void VtkWriter::write(const InterfaceState& s, const BodyState& b) {
-  const Mesh& mesh = model_.mesh();
-  const Interface& I = model_.interface();
-  const Layout& L = I.layout;
-  const MaterialParams& mat = model_.material();
-  const Eigen::Index nn = static_cast<Eigen::Index>(mesh.nodes.size()), nc = static_cast<Eigen::Index>(mesh.cells.size());
-
-  Eigen::MatrixXd X(3, nn), U = Eigen::MatrixXd::Zero(3, nn);
-  for (Eigen::Index n = 0; n < nn; ++n) {
-    X.col(n) = mesh.nodes[n];
-    for (int c = 0; c < mesh.dim; ++c) U(c, n) = b.u[mesh.dof(int(n), c)];
-  }
-  // Interface data on the contact nodes, zero elsewhere (with a mask field).
-  Eigen::MatrixXd contact = Eigen::MatrixXd::Zero(1, nn), beta = Eigen::MatrixXd::Zero(1, nn),
-                  status = Eigen::MatrixXd::Zero(1, nn), Rbar = Eigen::MatrixXd::Zero(L.dim, nn),
-                  r = Eigen::MatrixXd::Zero(L.dim, nn);
-  for (int i = 0; i < I.size(); ++i) {
-    const int n = I.pairs[i].node;
-    contact(0, n) = 1;
-    beta(0, n) = s.beta[i];
-    status(0, n) = static_cast<int>(s.status[i]);
-    Rbar.col(n) = L.local(s.Rbar, i);
-    r.col(n) = L.local(b.r, i);
-  }
-  const Eigen::Matrix3Xd eps = cell_strains(mesh, b.u);
-  const Eigen::Matrix3Xd sigma = hooke_matrix(mat) * eps;
-  Eigen::MatrixXd vm(1, nc);
-  for (Eigen::Index c = 0; c < nc; ++c)
-    vm(0, c) = von_mises(sigma.col(c), mat.hypothesis == Hypothesis::PlaneStrain ? mat.nu * (sigma(0, c) + sigma(1, c)) : 0.0);
-
-  const std::string name = file_name(files_.size());
-  const std::string path = directory_ + "/" + name;
-  AtomicFile file(path);
-  std::ostream& out = file.stream();
-  out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"UnstructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-      << "<UnstructuredGrid>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfCells=\"" << nc << "\">\n<Points>\n";
-  data_array(out, "coordinates [mm]", 3, X);
-  out << "</Points>\n<Cells>\n<DataArray type=\"Int64\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (const auto& cell : mesh.cells) {
-    for (int n : cell) out << n << " ";
-    out << "\n";
-  }
-  out << "</DataArray>\n<DataArray type=\"Int64\" Name=\"offsets\" format=\"ascii\">\n";
-  std::size_t offset = 0;
-  for (const auto& cell : mesh.cells) out << (offset += cell.size()) << " ";
-  out << "\n</DataArray>\n<DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (const auto& cell : mesh.cells) out << (cell.size() == 3 ? 5 : 9) << " ";  // VTK_TRIANGLE, VTK_QUAD
-  out << "\n</DataArray>\n</Cells>\n<PointData Vectors=\"displacement [mm]\">\n";
-  data_array(out, "displacement [mm]", 3, U);
-  data_array(out, "contact node", 1, contact);
-  data_array(out, "beta", 1, beta);
-  data_array(out, "status (0 separated, 1 stick, 2 slide)", 1, status);
-  data_array(out, "Rbar (t, n) [N]", L.dim, Rbar);
-  data_array(out, "r = Rbar + Radh (t, n) [N]", L.dim, r);
-  out << "</PointData>\n<CellData>\n";
-  data_array(out, "strain (xx, yy, xy)", 3, eps);
-  data_array(out, "stress (xx, yy, xy) [MPa]", 3, sigma);
-  data_array(out, "von Mises [MPa]", 1, vm);
-  out << "</CellData>\n</Piece>\n</UnstructuredGrid>\n</VTKFile>\n";
-  file.commit();
-
-  files_.emplace_back(s.t, name);
-  write_collection();
-}
-
-std::string VtkWriter::file_name(std::size_t k) {
-  char name[64];
-  std::snprintf(name, sizeof name, "mesh_%04zu.vtu", k);
+std::string frame_name(std::size_t k) {
+  char name[16];
+  std::snprintf(name, sizeof name, "%04zu", k);
   return name;
 }
 
-void VtkWriter::write_collection() const {
-  AtomicFile collection(directory_ + "/results.pvd");
-  std::ostream& pvd = collection.stream();
-  pvd << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-  for (const auto& [t, file] : files_) pvd << "<DataSet timestep=\"" << t << "\" file=\"" << file << "\"/>\n";
-  pvd << "</Collection>\n</VTKFile>\n";
-  collection.commit();
+/// The components of a symmetric tensor of VTK's 9-component layout (xx, xy, xz, yx, ..., zz)
+/// from the plane (xx, yy, xy) values and zz.
+void push_tensor(std::vector<double>& out, double xx, double yy, double xy, double zz) {
+  out.insert(out.end(), {xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz});
 }
 
-void VtkWriter::resume(const std::vector<double>& times) {
-  files_.clear();
-  for (double t : times) files_.emplace_back(t, file_name(files_.size()));
-  for (std::size_t k = files_.size(); std::filesystem::exists(directory_ + "/" + file_name(k)); ++k)
-    std::filesystem::remove(directory_ + "/" + file_name(k));
-  write_collection();
+const std::vector<std::string> tensor_components = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
+
+}  // namespace
+
+void VtkWriter::write_bodies(const std::string& file, const BodyState& b) const {
+  const Mesh& mesh = model_.mesh();
+  const MaterialParams& mat = model_.material();
+  VtkFile vtu(VtkFile::Kind::UnstructuredGrid);
+  std::vector<double> xyz, u;
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    xyz.insert(xyz.end(), mesh.nodes[n].data(), mesh.nodes[n].data() + 3);
+    for (int c = 0; c < 3; ++c) u.push_back(c < mesh.dim ? b.u[mesh.dof(n, c)] : 0.0);
+  }
+  vtu.points(xyz);
+  std::vector<int> types;
+  for (const auto& cell : mesh.cells) types.push_back(cell.size() == 3 ? 5 : 9);  // VTK_TRIANGLE, VTK_QUAD
+  vtu.cells(mesh.cells, types);
+  vtu.point_data(VtkFile::floats("displacement", 3, u, {"x", "y", "z"}));
+  // Plane strain: eps_zz = 0, sigma_zz = nu (sigma_xx + sigma_yy); plane stress: sigma_zz = 0,
+  // eps_zz = -nu / (1 - nu) (eps_xx + eps_yy). Shear as tensor components (gamma / 2).
+  const Eigen::Matrix3Xd eps = cell_strains(mesh, b.u);
+  const Eigen::Matrix3Xd sigma = hooke_matrix(mat) * eps;
+  const bool strain = mat.hypothesis == Hypothesis::PlaneStrain;
+  std::vector<double> strain_t, stress_t, von_mises;
+  for (Eigen::Index c = 0; c < eps.cols(); ++c) {
+    const double szz = strain ? mat.nu * (sigma(0, c) + sigma(1, c)) : 0.0;
+    const double ezz = strain ? 0.0 : -mat.nu / (1 - mat.nu) * (eps(0, c) + eps(1, c));
+    push_tensor(strain_t, eps(0, c), eps(1, c), 0.5 * eps(2, c), ezz);
+    push_tensor(stress_t, sigma(0, c), sigma(1, c), sigma(2, c), szz);
+    const double a = sigma(0, c) - sigma(1, c), d = sigma(1, c) - szz, e = szz - sigma(0, c);
+    von_mises.push_back(std::sqrt(0.5 * (a * a + d * d + e * e) + 3 * sigma(2, c) * sigma(2, c)));
+  }
+  vtu.cell_data(VtkFile::floats("strain", 9, strain_t, tensor_components));
+  vtu.cell_data(VtkFile::floats("stress", 9, stress_t, tensor_components));
+  vtu.cell_data(VtkFile::floats("von_Mises", 1, von_mises));
+  vtu.write(file);
+}
+
+void VtkWriter::write_interface(const std::string& file, const InterfaceState& s, const BodyState& b) const {
+  const Mesh& mesh = model_.mesh();
+  const Interface& I = model_.interface();
+  const Layout& L = I.layout;
+  VtkFile vtp(VtkFile::Kind::PolyData);
+  std::vector<double> xyz;
+  std::vector<int> pair_of_node(mesh.num_nodes(), -1), nodes;
+  for (int i = 0; i < I.size(); ++i) {
+    const int n = I.pairs[i].node;
+    xyz.insert(xyz.end(), mesh.nodes[n].data(), mesh.nodes[n].data() + 3);
+    if (pair_of_node[n] < 0) pair_of_node[n] = i;
+    nodes.push_back(n);
+  }
+  vtp.points(xyz);
+  std::vector<std::vector<int>> lines;
+  for (const auto& f : mesh.facets_within(nodes)) lines.push_back({pair_of_node[f[0]], pair_of_node[f[1]]});
+  vtp.cells(lines, std::vector<int>(lines.size(), 3));  // VTK_LINE
+  // Local components: tangential first, normal last, named.
+  const std::vector<std::string> local = L.dim == 2 ? std::vector<std::string>{"t", "n"}
+                                                    : std::vector<std::string>{"t1", "t2", "n"};
+  const Eigen::VectorXd Radh = b.r - s.Rbar;
+  std::vector<double> beta, a, p, u_xyz, r_xyz;
+  std::vector<std::int64_t> status;
+  for (int i = 0; i < I.size(); ++i) {
+    beta.push_back(s.beta[i]);
+    a.push_back(I.pairs[i].measure);
+    status.push_back(static_cast<int>(s.status[i]));
+    Eigen::Vector3d ug = Eigen::Vector3d::Zero(), rg = Eigen::Vector3d::Zero();
+    for (int k = 0; k < L.dim; ++k) {
+      p.push_back(b.r[L.offset(i) + k] / I.pairs[i].measure);
+      ug += s.u[L.offset(i) + k] * I.pairs[i].frame.axis(k, L.dim);
+      rg += b.r[L.offset(i) + k] * I.pairs[i].frame.axis(k, L.dim);
+    }
+    u_xyz.insert(u_xyz.end(), ug.data(), ug.data() + 3);
+    r_xyz.insert(r_xyz.end(), rg.data(), rg.data() + 3);
+  }
+  const auto stacked = [](const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); };
+  vtp.point_data(VtkFile::floats("beta", 1, beta));
+  vtp.point_data(VtkFile::integers("status", "Int32", status));  // 0 separated, 1 stick, 2 slide
+  vtp.point_data(VtkFile::floats("tributary", 1, a));
+  vtp.point_data(VtkFile::floats("u", L.dim, stacked(s.u), local));
+  vtp.point_data(VtkFile::floats("Rbar", L.dim, stacked(s.Rbar), local));
+  vtp.point_data(VtkFile::floats("Radh", L.dim, stacked(Radh), local));
+  vtp.point_data(VtkFile::floats("r", L.dim, stacked(b.r), local));
+  vtp.point_data(VtkFile::floats("p", L.dim, p, local));
+  vtp.point_data(VtkFile::floats("u_xyz", 3, u_xyz, {"x", "y", "z"}));
+  vtp.point_data(VtkFile::floats("r_xyz", 3, r_xyz, {"x", "y", "z"}));
+  vtp.write(file);
+}
+
+void VtkWriter::write(const InterfaceState& s, const BodyState& b) {
+  if (!frames_.empty() && frames_.back().first == s.t) return;
+  const std::string k = frame_name(frames_.size());
+  write_bodies(directory_ + "/mesh_" + k + ".vtu", b);
+  write_interface(directory_ + "/interface_" + k + ".vtp", s, b);
+  frames_.emplace_back(s.t, k);
+  write_collections();
+}
+
+void VtkWriter::write_collections() const {
+  std::vector<std::pair<double, std::string>> bodies, interface;
+  for (const auto& [t, name] : frames_) {
+    bodies.emplace_back(t, "mesh_" + name + ".vtu");
+    interface.emplace_back(t, "interface_" + name + ".vtp");
+  }
+  write_collection(directory_ + "/results.pvd", bodies);
+  write_collection(directory_ + "/interface.pvd", interface);
+}
+
+void VtkWriter::resume(double t) {
+  // The frames the earlier run listed (our own results.pvd: one DataSet line each).
+  std::ifstream in(directory_ + "/results.pvd");
+  const std::regex entry("timestep=\"([^\"]*)\" file=\"mesh_([0-9]+)\\\\.vtu\"");
+  std::smatch m;
+  std::vector<std::pair<double, std::string>> kept;
+  for (std::string line; std::getline(in, line);)
+    if (std::regex_search(line, m, entry) && std::stod(m[1]) <= t + 1e-9 * std::max(1.0, std::abs(t)))
+      kept.emplace_back(std::stod(m[1]), m[2]);
+  frames_ = kept;
+  for (std::size_t k = frames_.size();; ++k) {
+    const std::string vtu = directory_ + "/mesh_" + frame_name(k) + ".vtu", vtp = directory_ + "/interface_" + frame_name(k) + ".vtp";
+    if (!std::filesystem::exists(vtu) && !std::filesystem::exists(vtp)) break;
+    std::filesystem::remove(vtu);
+    std::filesystem::remove(vtp);
+  }
+  write_collections();
 }
 
 }  // namespace rccm

@@ -147,3 +147,18 @@ time = { T = 1.0; };
   REQUIRE(ode.warnings().size() == 1);
   CHECK_THAT(ode.warnings()[0], Catch::Contains("outside [0, previous beta] by up to 0.25 (contact node 2, t = 0.6 s)"));
 }
+
+TEST_CASE("a run that crawls says so, and ARKODE's hints follow the scheme in use", "[failure]") {
+  // Steps capped at 5e-8 s on T = 1 s: after 100 of them the run notes that it crawls; at 150
+  // ARKODE stops (max_steps) and, with its implicit scheme, does not suggest switching to it.
+  const std::string dir = fs::temp_directory_path() / "rccm_failure_crawl";
+  const Failure f = run_to_failure(load_config(
+      RCCM_SOURCE_DIR "/config/b1.cfg", {"time.T=1.0", "output.times=[]", "integrator.max_step=5e-8",
+                                         "integrator.max_steps=150", "output.directory=\"" + dir + "\""}));
+  CHECK_THAT(f.message, Catch::Contains("TOO_MUCH_WORK") && Catch::Contains("raise integrator.max_steps") &&
+                            !Catch::Contains("dirk"));
+  std::ifstream report(dir + "/report.txt");
+  const std::string text((std::istreambuf_iterator<char>(report)), std::istreambuf_iterator<char>());
+  CHECK_THAT(text, Catch::Contains("100 accepted steps in a row below 1e-7 T") && Catch::Contains("crawls"));
+  fs::remove_all(dir);
+}

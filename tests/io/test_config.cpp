@@ -82,3 +82,22 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
 TEST_CASE("a missing file is named", "[config]") {
   CHECK_THROWS_WITH(load_config("/nonexistent/b1.cfg"), Catch::Contains("/nonexistent/b1.cfg: cannot read"));
 }
+
+TEST_CASE("@include finds its file next to the config, wherever rccm runs from", "[config]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_include";
+  fs::create_directories(dir / "sub");
+  std::ofstream(dir / "sub" / "material.cfg") << "material = { E = 1000; nu = 0.3; };\n";
+  std::ofstream(dir / "sub" / "main.cfg") << R"(mesh = { size = [10.0, 5.0]; nx = 4; ny = 2; };
+@include "material.cfg"
+interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.3; };
+loads = ( { node_set = "top_left"; type = "displacement"; component = "y"; value = 0.1; } );
+time = { T = 1.0; };
+)";
+  const fs::path cwd = fs::current_path();
+  fs::current_path(dir);  // not the config's directory
+  Config c;
+  CHECK_NOTHROW(c = load_config("sub/main.cfg"));
+  fs::current_path(cwd);
+  CHECK(c.material.E == 1000.0);
+  fs::remove_all(dir);
+}

@@ -1,10 +1,15 @@
-// Result files: what is written equals what the solver computed, to the printed precision.
+// Result files: what is written equals what the solver computed, to the printed precision;
+// names with commas survive; the initial state, probes, every load's displacement; the JSON
+// report at full precision; ParaView frames.
 #include "helpers.hpp"
-#include "rccm/base/config.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/app/stop_request.hpp"
+#include "rccm/base/errors.hpp"
 
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 
+#include <csignal>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -14,67 +19,155 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::vector<std::vector<std::string>> read_csv(const std::string& path) {
-  std::ifstream in(path);
-  std::vector<std::vector<std::string>> rows;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> row;
-    std::stringstream ss(line);
-    for (std::string cell; std::getline(ss, cell, ',');) row.push_back(cell);
-    rows.push_back(row);
-  }
-  return rows;
+RunResult run_into(const fs::path& dir, const std::string& config, std::vector<std::string> overrides,
+                   bool restart = false, int stop_at_step = -1) {
+  overrides.push_back("output.directory=" + dir.string());
+  RunOptions options;
+  options.write_files = true;
+  options.force = !restart;
+  options.restart = restart;
+  options.observer = [stop_at_step](const AcceptedStep& a) {
+    if (a.step == stop_at_step) request_stop(SIGTERM);
+  };
+  return Simulation(load_config(config, overrides), options).run();
 }
 
-std::size_t column(const std::vector<std::string>& header, const std::string& name) {
-  for (std::size_t j = 0; j < header.size(); ++j)
-    if (header[j] == name) return j;
-  FAIL("no column " << name);
-  return 0;
+std::string interface_file(const fs::path& dir, double t) {
+  std::ostringstream name;
+  name << "interface_t" << t << ".csv";
+  return (dir / name.str()).string();
 }
 
 }  // namespace
 
 TEST_CASE("CSV round trip: interface, history and curves hold the solver's values", "[output]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_output";
-  fs::remove_all(dir);
-  Config cfg = load_config(std::string(RCCM_SOURCE_DIR) + "/config/b1.cfg",
-                           {"integrator.method=euler", "output.directory=\"" + dir.string() + "\""});
-  RunOptions options;
-  options.write_files = true;
-  const RunResult r = Simulation(cfg, options).run();
+  const RunResult r = run_into(dir, test::shipped("b1.cfg"), {"integrator.method=euler"});
 
   // Interface files: one per output time and T, every field of every node.
   REQUIRE(r.snapshots.size() == 3);
   for (const Snapshot& s : r.snapshots) {
-    std::ostringstream name;
-    name << "interface_t" << s.t << ".csv";
-    const auto rows = read_csv((dir / name.str()).string());
-    REQUIRE(rows.size() == static_cast<std::size_t>(s.beta.size()) + 1);
-    const auto& h = rows[0];
+    const test::CsvTable t = test::read_csv(interface_file(dir, s.t));
+    REQUIRE(t.rows.size() == static_cast<std::size_t>(s.beta.size()));
+    const std::vector<double> beta = t.numbers("beta"), un = t.numbers("u_n [mm]"), ut = t.numbers("u_t [mm]"),
+                              Rn = t.numbers("Rbar_n [N]"), Rt = t.numbers("Rbar_t [N]");
     for (Eigen::Index i = 0; i < s.beta.size(); ++i) {
-      const auto& row = rows[i + 1];
-      CHECK(std::stod(row[column(h, "beta")]) == Approx(s.beta[i]).epsilon(1e-10).margin(1e-300));
-      CHECK(std::stod(row[column(h, "u_n [mm]")]) == Approx(s.u[2 * i + 1]).epsilon(1e-10).margin(1e-300));
-      CHECK(std::stod(row[column(h, "u_t [mm]")]) == Approx(s.u[2 * i]).epsilon(1e-10).margin(1e-300));
-      CHECK(std::stod(row[column(h, "Rbar_n [N]")]) == Approx(s.Rbar[2 * i + 1]).epsilon(1e-10).margin(1e-300));
-      CHECK(std::stod(row[column(h, "Rbar_t [N]")]) == Approx(s.Rbar[2 * i]).epsilon(1e-10).margin(1e-300));
+      CHECK(beta[i] == Approx(s.beta[i]).epsilon(1e-10).margin(1e-300));
+      CHECK(un[i] == Approx(s.u[2 * i + 1]).epsilon(1e-10).margin(1e-300));
+      CHECK(ut[i] == Approx(s.u[2 * i]).epsilon(1e-10).margin(1e-300));
+      CHECK(Rn[i] == Approx(s.Rbar[2 * i + 1]).epsilon(1e-10).margin(1e-300));
+      CHECK(Rt[i] == Approx(s.Rbar[2 * i]).epsilon(1e-10).margin(1e-300));
     }
   }
   // History: a row per accepted step (and the initial state), the watched point B = node 0.
-  const auto history = read_csv((dir / "history.csv").string());
-  REQUIRE(history.size() == r.steps.size() + 1);
-  const auto& last = history.back();
-  CHECK(std::stod(last[column(history[0], "t [s]")]) == Approx(10.0));
-  CHECK(std::stod(last[column(history[0], "B beta")]) == Approx(r.snapshots.back().beta[0]).epsilon(1e-10).margin(1e-300));
-  // Curves: the last row carries the run's energy terms.
-  const auto curves = read_csv((dir / "curves.csv").string());
-  REQUIRE(curves.size() == r.steps.size() + 1);
-  CHECK(std::stod(curves.back()[column(curves[0], "external work [N mm]")]) ==
-        Approx(r.energy.external_work).epsilon(1e-10));
-  CHECK(std::stod(curves.back()[column(curves[0], "L0 top_left.y value [mm]")]) == Approx(0.3).epsilon(1e-12));
-  // The report exists in both forms.
+  const test::CsvTable history = test::read_csv((dir / "history.csv").string());
+  REQUIRE(history.rows.size() == r.steps.size());
+  CHECK(history.numbers("t [s]").back() == Approx(10.0));
+  CHECK(history.numbers("B beta").back() == Approx(r.snapshots.back().beta[0]).epsilon(1e-10).margin(1e-300));
+  // Curves: the last row carries the run's energy terms and the debonded length of the last snapshot.
+  const test::CsvTable curves = test::read_csv((dir / "curves.csv").string());
+  REQUIRE(curves.rows.size() == r.steps.size());
+  CHECK(curves.numbers("external work [N mm]").back() == Approx(r.energy.external_work).epsilon(1e-10));
+  CHECK(curves.numbers("L0 top_left.y value [mm]").back() == Approx(0.3).epsilon(1e-12));
+  CHECK(curves.numbers("debonded length [mm]").back() == Approx(r.snapshots.back().debonded_length).epsilon(1e-12));
+  // The report exists in both forms; the JSON holds the energy terms to the last bit.
   CHECK(fs::file_size(dir / "report.txt") > 0);
-  CHECK(fs::file_size(dir / "report.json") > 0);
-  CHECK(fs::exists(dir / "results.pvd"));
+  std::ifstream json(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json);
+  CHECK(report["energy"]["damage_dissipation"].get<double>() == r.energy.damage_dissipation);
+  CHECK(report["energy"]["imbalance"].get<double>() == r.energy.imbalance());
+  CHECK(report["per_step"].size() == r.steps.size());
+  CHECK(report["complete"].get<bool>());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a watch name with a comma and a quote: quoted in the CSV header, and a restart keeps every line",
+          "[output][restart]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_output_quoted";
+  const std::vector<std::string> settings = {
+      "integrator.method=euler", "time.steps=300", "output.checkpoint_steps=50",
+      "output.watch=({name=\"B, under \\\"A\\\"\";point=[0.0,0.0];})"};
+  request_stop(0);
+  REQUIRE_THROWS_AS(run_into(dir, test::shipped("b1.cfg"), settings, false, 120), Interrupted);
+  request_stop(0);
+  const RunResult r = run_into(dir, test::shipped("b1.cfg"), settings, true);
+  const test::CsvTable history = test::read_csv((dir / "history.csv").string());
+  CHECK(history.header[12] == "B, under \"A\" beta");
+  CHECK(history.rows.size() == r.steps.size());
+  CHECK(history.rows.size() == 303);  // the initial state, 300 steps and the 2 output times, each once
+  for (const auto& row : history.rows) CHECK(row.size() == history.header.size());
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the initial state at output time 0, probes in the body, every load's displacement in curves.csv",
+          "[output]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_output_probes";
+  // A block pulled by a force on its top-right corner (force control): the load's displacement
+  // column is the corner's displacement, which a probe there sees too.
+  const std::string text = R"(
+mesh = { size = [10.0, 5.0]; nx = 8; ny = 4; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.3; };
+loads = ( { node_set = "top_right"; type = "force"; component = "y"; value = 2.0; },
+          { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; } );
+time = { T = 1.0; steps = 10; };
+integrator = { method = "euler"; };
+output = { times = [0.0, 0.5]; probes = ( { name = "corner"; point = [10.0, 5.0]; }, { name = "middle"; point = [5.0, 2.6]; } ); };
+)";
+  const std::string path = test::write_temp_config(text);
+  const RunResult r = run_into(dir, path, {});
+  std::remove(path.c_str());
+  // Output time 0: the initial state, beta0 and no force.
+  REQUIRE(r.snapshots.size() == 3);
+  CHECK(r.snapshots[0].t == 0.0);
+  const test::CsvTable t0 = test::read_csv(interface_file(dir, 0.0));
+  for (double b : t0.numbers("beta")) CHECK(b == 1.0);
+  for (double R : t0.numbers("Rbar_n [N]")) CHECK(R == 0.0);
+  const test::CsvTable curves = test::read_csv((dir / "curves.csv").string());
+  const test::CsvTable history = test::read_csv((dir / "history.csv").string());
+  const std::vector<double> load_u = curves.numbers("L0 top_right.y displacement [mm]"),
+                            probe_u = history.numbers("corner u_y [mm]"), F = curves.numbers("L0 top_right.y force [N]");
+  REQUIRE(load_u.size() == probe_u.size());
+  for (std::size_t k = 0; k < load_u.size(); ++k) CHECK(load_u[k] == Approx(probe_u[k]).epsilon(1e-12).margin(1e-300));
+  CHECK(load_u.back() > 0);                          // pulled up, the corner rises
+  CHECK(F.back() == Approx(2.0).epsilon(1e-9));      // the resultant of a force load is the force
+  CHECK(history.numbers("middle u_x [mm]").size() == load_u.size());
+  // The displacement load's column is the prescribed value.
+  for (double u : curves.numbers("L1 left.x displacement [mm]")) CHECK(u == 0.0);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("ParaView frames at t = 0, at the output times and every output.every steps", "[output]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_output_frames";
+  run_into(dir, test::shipped("b1.cfg"), {"integrator.method=euler", "output.every=50"});
+  std::ifstream pvd(dir / "results.pvd"), ipvd(dir / "interface.pvd");
+  const std::string bodies((std::istreambuf_iterator<char>(pvd)), {}), interface((std::istreambuf_iterator<char>(ipvd)), {});
+  // t = 0, steps 50, 100, 150, 200 (every 50 of 212), the two output times and T.
+  const auto frames = [](const std::string& s) {
+    std::size_t n = 0;
+    for (std::size_t k = s.find("<DataSet"); k != std::string::npos; k = s.find("<DataSet", k + 1)) ++n;
+    return n;
+  };
+  CHECK(frames(bodies) == 8);
+  CHECK(frames(interface) == 8);
+  CHECK(bodies.find("timestep=\"0\" file=\"mesh_0000.vtu\"") != std::string::npos);
+  for (int k = 0; k < 8; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "interface_%04d.vtp", k);
+    CHECK(fs::exists(dir / name));
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the rate-independent limit names the energy its snap-through releases, not an imbalance", "[output]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_output_released";
+  run_into(dir, test::shipped("b1.cfg"), {"interface.alpha=0"});
+  std::ifstream txt(dir / "report.txt"), json(dir / "report.json");
+  const std::string text((std::istreambuf_iterator<char>(txt)), {});
+  CHECK_THAT(text, Catch::Contains("integrator: rate-independent") && Catch::Contains("released in snap-through") &&
+                       !Catch::Contains("  imbalance"));
+  const nlohmann::json report = nlohmann::json::parse(json);
+  CHECK(report["energy"].contains("released_in_snap_through"));
+  CHECK(!report["energy"].contains("imbalance"));
+  fs::remove_all(dir);
 }

@@ -119,6 +119,7 @@ struct OutputParams {
   std::vector<NamedPoint> watch;  // interface points: beta, u, Radh, Rbar at every step
   std::vector<NamedPoint> probes; // body points: displacement at every step
   int checkpoint_steps = 100;     // a restart point every this many accepted steps; 0: only at a stop
+  int every = 0;                  // a ParaView frame every this many accepted steps too; 0: output times only
 };
 
 struct Config {

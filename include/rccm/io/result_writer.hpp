@@ -41,7 +41,10 @@ class ResultWriter {
                const ResumePoint* resume = nullptr);
 
   void step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e);
+  /// An output time: the interface file and a ParaView frame.
   void output(const InterfaceState& s, const BodyState& b);
+  /// A ParaView frame only (t = 0, output.every).
+  void frame(const InterfaceState& s, const BodyState& b) { vtk_.write(s, b); }
   const std::string& directory() const { return directory_; }
   /// The records of the steps an earlier run wrote into history.csv up to the resume point.
   const std::vector<StepRecord>& resumed_steps() const { return resumed_steps_; }

@@ -1,5 +1,9 @@
-// ParaView output: one .vtu per output time (deformed-mesh data and interface data on the
-// nodes, strain and stress on the cells) and a .pvd that ties them to their times.
+// ParaView output (README "ParaView"): per frame, the bodies as mesh_<k>.vtu (displacement;
+// strain and stress as full symmetric tensors, sigma_zz of plane strain included; von Mises)
+// and the interface as its own dataset interface_<k>.vtp (its facets as lines; beta, status,
+// the local vectors u, Rbar, Radh, r and the pressures p with named components, and the
+// global vectors u_xyz, r_xyz for glyphs); results.pvd and interface.pvd tie the frames to
+// their times. A frame is written at t = 0, at each output time and every output.every steps.
 #pragma once
 
 #include "rccm/model/body_state.hpp"
@@ -16,19 +20,21 @@ class VtkWriter {
  public:
   VtkWriter(const Model& model, std::string directory) : model_(model), directory_(std::move(directory)) {}
 
-  /// Writes mesh_<k>.vtu for this state and rewrites results.pvd (complete after each call).
+  /// Writes the frame of (s, b) and rewrites both collections (complete after each call); a
+  /// second frame at the time of the last one is not written.
   void write(const InterfaceState& s, const BodyState& b);
 
-  /// Takes up the files of an earlier run that wrote one .vtu at each of `times`: removes
-  /// later .vtu files and rewrites results.pvd with these.
-  void resume(const std::vector<double>& times);
+  /// Takes up the files of an earlier run: keeps the frames of its results.pvd up to time t,
+  /// removes the later ones.
+  void resume(double t);
 
  private:
-  static std::string file_name(std::size_t k);
-  void write_collection() const;
+  void write_bodies(const std::string& file, const BodyState& b) const;
+  void write_interface(const std::string& file, const InterfaceState& s, const BodyState& b) const;
+  void write_collections() const;
   const Model& model_;
   std::string directory_;
-  std::vector<std::pair<double, std::string>> files_;
+  std::vector<std::pair<double, std::string>> frames_;  // time, frame number as text
 };
 
 }  // namespace rccm
