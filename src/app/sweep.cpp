@@ -146,8 +146,11 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
   char buf[64];
   std::snprintf(buf, sizeof buf, "%-28s %-12s", "case", "status");
   out << buf;
-  for (std::size_t k = axes.size() + 2; k + 1 < header.size(); ++k) {
-    std::snprintf(buf, sizeof buf, " %14.14s", header[k].c_str());
+  std::vector<std::string> labels = {"peak F [N]", "t peak [s]"};
+  for (double t : times) labels.push_back("debond@" + csv_number(t));
+  labels.insert(labels.end(), {"damage [N mm]", "friction", "imbalance", "steps", "wall [s]"});
+  for (const std::string& label : labels) {
+    std::snprintf(buf, sizeof buf, " %14.14s", label.c_str());
     out << buf;
   }
   out << "\n";

@@ -1,4 +1,4 @@
-// Verification (VERIFICATION.md): energy balance, exact rate-independent results, symmetry
+// Verification (docs/VERIFICATION.md): energy balance, exact rate-independent results, symmetry
 // and invariance under a change of units.
 #include "helpers.hpp"
 #include "rccm/model/model.hpp"
