@@ -2,7 +2,7 @@
 #pragma once
 
 #include "rccm/base/config.hpp"
-#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/fem/mesh_source.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "rccm/model/model.hpp"
 
@@ -37,7 +37,7 @@ inline Config config_from_text(const std::string& text, const std::vector<std::s
 }
 
 /// The model of a config on its built-in rectangle mesh, as `rccm run` builds it.
-inline Model make_model(const Config& cfg) { return Model(cfg, make_rectangle(cfg.mesh)); }
+inline Model make_model(const Config& cfg) { return Model(cfg, make_mesh(cfg)); }
 
 /// A CSV file of rccm (RFC 4180: fields may be quoted, "" inside quotes) as columns by header.
 struct CsvTable {

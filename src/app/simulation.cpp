@@ -3,7 +3,7 @@
 #include "rccm/app/stop_request.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/contact/contact_solver.hpp"
-#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/fem/mesh_source.hpp"
 #include "rccm/model/model.hpp"
 #include "rccm/time/beta_ode.hpp"
 #include "rccm/time/integrator.hpp"
@@ -12,7 +12,7 @@ namespace rccm {
 
 RunResult Simulation::run() {
   Recorder recorder(cfg_, options_);                  // the output directory checked, or the checkpoint read
-  const Model model(cfg_, make_rectangle(cfg_.mesh));  // mesh, loads, body (K0 factorized once), interface, W0
+  const Model model(cfg_, make_mesh(cfg_));  // mesh, loads, body (K0 factorized once), interface, W0
   recorder.open(model);                               // result files, only now that the input is known good
   BetaOde ode(model, make_contact_solver(cfg_.solver), [&](const AcceptedStep& a) {
     recorder.step(a);  // energy, files, logs, checkpoints

@@ -40,12 +40,22 @@ class Hash {
 
 std::string Config::fingerprint() const {
   Hash h;
+  h("mesh.file", mesh.contents)("mesh.refine", mesh.refine);
+  for (const auto& [name, value] : mesh.parameters) h(("mesh.parameters." + name).c_str(), value);
   h.list("mesh.origin", mesh.origin).list("mesh.size", mesh.size)("mesh.nx", mesh.nx)("mesh.ny", mesh.ny);
   h("mesh.element", double(mesh.element))("mesh.rotation", mesh.rotation);
   for (const NodeSetDef& d : mesh.node_sets) h("mesh.node_sets.name", d.name).list("mesh.node_sets.box", d.box);
-  h("material.E", material.E)("material.nu", material.nu)("material.hypothesis", double(material.hypothesis));
+  for (const BodyParams& b : bodies) {
+    const MaterialParams& m = b.material;
+    h("body.name", b.name)("material.orthotropic", m.orthotropic)("material.E", m.E)("material.nu", m.nu);
+    h("material.E1", m.E1)("material.E2", m.E2)("material.E3", m.E3)("material.nu12", m.nu12)("material.nu13", m.nu13);
+    h("material.nu23", m.nu23)("material.G12", m.G12)("material.angle", m.angle)("material.hypothesis", double(m.hypothesis));
+  }
   for (const InterfaceParams& p : interfaces) {
-    h("interface.boundary", p.boundary).list("interface.normal", p.normal)("interface.Cn", p.Cn)("interface.Ct", p.Ct);
+    h("interface.boundary", p.boundary)("interface.facing", double(p.facing)).list("interface.normal", p.normal);
+    h.list("interface.centre", p.centre)("interface.radius", p.radius)("interface.inside", p.inside);
+    h("interface.opposite", p.opposite)("interface.tolerance", p.tolerance)("interface.precrack", p.precrack);
+    h("interface.Cn", p.Cn)("interface.Ct", p.Ct);
     h("interface.w", p.w)("interface.alpha", p.alpha)("interface.mu", p.mu);
     h.list("interface.beta0", p.beta0).list("interface.g0", p.g0);
   }

@@ -2,6 +2,8 @@
 
 #include "rccm/base/errors.hpp"
 
+#include <algorithm>
+
 namespace rccm {
 
 std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
@@ -18,8 +20,15 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
       throw InputError(where + e.what());
     }
     if (set->empty()) throw InputError(where + "node set '" + p.node_set + "' has no nodes");
-    LoadCase lc{p.amplitude, Eigen::VectorXd::Zero(ndof), Eigen::VectorXd::Zero(ndof), {}, {}};
-    for (int n : *set) lc.dofs.push_back(mesh.dof(n, p.component));
+    LoadCase lc{p.amplitude, Eigen::VectorXd::Zero(ndof), Eigen::VectorXd::Zero(ndof), {}, {}, {}, 0};
+    lc.nodes = static_cast<int>(set->size());
+    if (p.kind == LoadKind::Pressure) {
+      const std::vector<Eigen::Vector3d> outward = mesh.outward_normals(*set);
+      for (std::size_t i = 0; i < set->size(); ++i)
+        for (int x = 0; x < mesh.dim; ++x) lc.dofs.push_back(mesh.dof((*set)[i], x)), lc.along.push_back(-outward[i][x]);
+    } else {
+      for (int n : *set) lc.dofs.push_back(mesh.dof(n, p.component)), lc.along.push_back(1.0);
+    }
     if (p.kind == LoadKind::Displacement) {
       for (int dof : lc.dofs) {
         if (owner[dof] >= 0)
@@ -30,27 +39,37 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
         lc.prescribed.push_back(dof);
       }
     } else if (p.kind == LoadKind::Force) {
-      for (int dof : lc.dofs) lc.force[dof] = 1.0;
-    } else {
-      const std::vector<double> a = mesh.tributary_measures(*set);
-      double total = 0;
-      for (std::size_t i = 0; i < set->size(); ++i) {
-        lc.force[lc.dofs[i]] = a[i];  // lumped traction: value * a_i
-        total += a[i];
-      }
-      if (total <= 0) throw InputError(where + "node set '" + p.node_set + "' has no boundary edge to carry a traction");
+      for (int dof : lc.dofs) lc.force[dof] = 1.0;  // axisymmetric: on the whole ring
+    } else {  // consistent nodal forces of a unit traction along x or y, or a unit pressure along -outward
+      const std::vector<BoundaryEdge> edges = mesh.boundary_edges(*set);
+      if (edges.empty()) throw InputError(where + "node set '" + p.node_set + "' has no boundary edge to carry a " +
+                                          (p.kind == LoadKind::Pressure ? "pressure" : "traction"));
+      for (const BoundaryEdge& e : edges)
+        for (int x = 0; x < mesh.dim; ++x) {
+          const double t = p.kind == LoadKind::Pressure ? -e.outward[x] : double(x == p.component);
+          lc.force[mesh.dof(e.a, x)] += t * e.weight_a;
+          lc.force[mesh.dof(e.b, x)] += t * e.weight_b;
+        }
     }
     out.push_back(std::move(lc));
   }
-  // A force on a prescribed DOF would act on the support, not on the body: refused.
-  for (std::size_t k = 0; k < out.size(); ++k)
-    if (cfg.loads[k].kind != LoadKind::Displacement)
-      for (int dof : out[k].dofs)
-        if (owner[dof] >= 0)
-          throw InputError(cfg.where(cfg.loads[k].path + ".node_set") + ": node " + std::to_string(dof / mesh.dim) +
-                           " component " + "xyz"[dof % mesh.dim] + " is prescribed by loads.[" +
-                           std::to_string(owner[dof]) + "]: a force there acts on the support, not on the body; "
-                           "load another node set, or drop one of the two loads");
+  // A force on a prescribed DOF would act on the support, not on the body: refused. A
+  // distributed load may end on a support (its share there goes into the support), but not
+  // lie on supports only.
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const LoadParams& p = cfg.loads[k];
+    if (p.kind == LoadKind::Displacement) continue;
+    const auto supported = [&](int dof) { return owner[dof] >= 0; };
+    const auto first = std::find_if(out[k].dofs.begin(), out[k].dofs.end(), supported);
+    if (p.kind == LoadKind::Force && first != out[k].dofs.end())
+      throw InputError(cfg.where(p.path + ".node_set") + ": node " + std::to_string(*first / mesh.dim) + " component " +
+                       "xyz"[*first % mesh.dim] + " is prescribed by loads.[" + std::to_string(owner[*first]) +
+                       "]: a force there acts on the support, not on the body; load another node set, or drop one of "
+                       "the two loads");
+    if (std::all_of(out[k].dofs.begin(), out[k].dofs.end(), supported))
+      throw InputError(cfg.where(p.path + ".node_set") + ": every node of '" + p.node_set + "' is prescribed along the " +
+                       (p.kind == LoadKind::Pressure ? "pressure" : "traction") + ": it would act on the supports only");
+  }
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include "rccm/base/suggest.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 namespace rccm {
@@ -17,7 +18,8 @@ std::vector<std::string> Mesh::node_set_names() const {
 const std::vector<int>& Mesh::node_set(const std::string& name) const {
   const auto it = node_sets.find(name);
   if (it != node_sets.end()) return it->second;
-  throw InputError("no node set named '" + name + "'" + suggestion(name, node_set_names()));
+  throw InputError("no node set named '" + name + "'" + (source.empty() ? "" : " in " + source) +
+                   suggestion(name, node_set_names()));
 }
 
 std::vector<std::vector<int>> Mesh::facets_within(const std::vector<int>& set) const {
@@ -29,8 +31,8 @@ std::vector<std::vector<int>> Mesh::facets_within(const std::vector<int>& set) c
   return out;
 }
 
-std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) const {
-  RCCM_VERIFY(dim == 2, "outward normals of edges (2D)");
+std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<int>& set) const {
+  RCCM_VERIFY(dim == 2, "boundary edges (2D)");
   std::vector<char> in(nodes.size(), 0);
   for (int n : set) in[n] = 1;
   // The cell centre behind each cell edge with both nodes in the set.
@@ -43,15 +45,33 @@ std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) 
       if (in[a] && in[b]) centre_of_edge[{std::min(a, b), std::max(a, b)}] = centre;
     }
   }
-  std::vector<Eigen::Vector3d> sum(nodes.size(), Eigen::Vector3d::Zero());
-  for (const auto& e : facets_within(set)) {
-    const Eigen::Vector3d t = nodes[e[1]] - nodes[e[0]];
-    Eigen::Vector3d n(t.y(), -t.x(), 0.0);  // length |t|: weighted by the edge's length
-    const auto centre = centre_of_edge.find({std::min(e[0], e[1]), std::max(e[0], e[1])});
+  std::vector<BoundaryEdge> out;
+  for (const auto& f : facets_within(set)) {
+    BoundaryEdge e;
+    e.a = f[0], e.b = f[1];
+    const Eigen::Vector3d t = nodes[e.b] - nodes[e.a];
+    e.length = t.norm();
+    e.outward = Eigen::Vector3d(t.y(), -t.x(), 0.0) / e.length;
+    const auto centre = centre_of_edge.find({std::min(e.a, e.b), std::max(e.a, e.b)});
     RCCM_VERIFY(centre != centre_of_edge.end(), "a boundary facet is an edge of a cell");
-    if (n.dot(0.5 * (nodes[e[0]] + nodes[e[1]]) - centre->second) < 0) n = -n;
-    sum[e[0]] += n;
-    sum[e[1]] += n;
+    if (e.outward.dot(0.5 * (nodes[e.a] + nodes[e.b]) - centre->second) < 0) e.outward = -e.outward;
+    if (axisymmetric) {  // int N_a 2 pi r ds with r linear along the edge
+      const double ra = nodes[e.a].x(), rb = nodes[e.b].x();
+      e.weight_a = 2 * M_PI * e.length * (2 * ra + rb) / 6;
+      e.weight_b = 2 * M_PI * e.length * (ra + 2 * rb) / 6;
+    } else {
+      e.weight_a = e.weight_b = 0.5 * e.length;
+    }
+    out.push_back(e);
+  }
+  return out;
+}
+
+std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) const {
+  std::vector<Eigen::Vector3d> sum(nodes.size(), Eigen::Vector3d::Zero());
+  for (const BoundaryEdge& e : boundary_edges(set)) {
+    sum[e.a] += e.length * e.outward;
+    sum[e.b] += e.length * e.outward;
   }
   std::vector<Eigen::Vector3d> out;
   for (int n : set) out.push_back(sum[n].norm() > 0 ? Eigen::Vector3d(sum[n].normalized()) : Eigen::Vector3d::Zero());
@@ -59,13 +79,16 @@ std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) 
 }
 
 std::vector<double> Mesh::tributary_measures(const std::vector<int>& set) const {
-  RCCM_VERIFY(dim == 2, "tributary measures of edges (2D)");
   std::vector<double> a(nodes.size(), 0.0);
-  for (const auto& e : facets_within(set)) {
-    const double half = 0.5 * (nodes[e[0]] - nodes[e[1]]).norm();
-    a[e[0]] += half;
-    a[e[1]] += half;
-  }
+  for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += e.weight_a, a[e.b] += e.weight_b;
+  std::vector<double> out;
+  for (int n : set) out.push_back(a[n]);
+  return out;
+}
+
+std::vector<double> Mesh::tributary_lengths(const std::vector<int>& set) const {
+  std::vector<double> a(nodes.size(), 0.0);
+  for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += 0.5 * e.length, a[e.b] += 0.5 * e.length;
   std::vector<double> out;
   for (int n : set) out.push_back(a[n]);
   return out;

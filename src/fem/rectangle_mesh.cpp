@@ -1,6 +1,6 @@
 #include "rccm/fem/rectangle_mesh.hpp"
 
-#include <Eigen/Geometry>
+#include "rccm/fem/mesh_source.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,6 +33,8 @@ Mesh make_rectangle(const MeshParams& p) {
       }
     }
 
+  m.body_names = {"body"};
+  m.cell_body.assign(m.cells.size(), 0);
   for (int i = 0; i < nx; ++i) {
     m.facets.push_back({id(i, 0), id(i + 1, 0)});
     m.facets.push_back({id(i, ny), id(i + 1, ny)});
@@ -57,20 +59,8 @@ Mesh make_rectangle(const MeshParams& p) {
   s["top_right"] = {id(nx, ny)};
   for (int n = 0; n < m.num_nodes(); ++n) s["all"].push_back(n);
 
-  const double tol = 1e-9 * std::max(p.size[0], p.size[1]);
-  for (const NodeSetDef& d : p.node_sets) {
-    std::vector<int> nodes;
-    for (int n = 0; n < m.num_nodes(); ++n) {
-      const Eigen::Vector3d& x = m.nodes[n];
-      if (x[0] >= d.box[0] - tol && x[0] <= d.box[1] + tol && x[1] >= d.box[2] - tol && x[1] <= d.box[3] + tol)
-        nodes.push_back(n);
-    }
-    s[d.name] = nodes;
-  }
-  m.placement.origin = Eigen::Vector3d(p.origin[0], p.origin[1], 0.0);
-  m.placement.rotation.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(p.rotation * M_PI / 180.0).toRotationMatrix();
-  if (p.rotation != 0.0)
-    for (Eigen::Vector3d& x : m.nodes) x = m.placement(x);
+  add_box_sets(m, p.node_sets);
+  place(m, p.origin, p.rotation);
   return m;
 }
 

@@ -2,6 +2,9 @@
 
 #include "rccm/base/errors.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <limits>
 #include <sstream>
 
 namespace rccm {
@@ -10,54 +13,189 @@ namespace {
 
 RccmLaw law_of(const InterfaceParams& p) { return {p.Cn, p.Ct, p.w, p.alpha, p.mu}; }
 
-/// Value k of a config list of one value or one per contact node.
-double per_node(const Config& cfg, const InterfaceParams& p, const char* setting, const std::vector<double>& v,
-                std::size_t nodes, std::size_t k) {
-  if (v.size() != 1 && v.size() != nodes)
-    throw InputError(cfg.where(p.path + "." + setting) + ": give one value or one per contact node (" +
-                     std::to_string(nodes) + "), got " + std::to_string(v.size()));
-  return v.size() == 1 ? v[0] : v[k];
+std::string point(const Eigen::Vector3d& x) {
+  std::ostringstream m;
+  m << "(" << x.x() << ", " << x.y() << ")";
+  return m.str();
 }
+
+/// The contact pairs of one config interface, built node by node of its boundary set.
+class PairBuilder {
+ public:
+  PairBuilder(const Mesh& mesh, const Config& cfg, const InterfaceParams& p, int law)
+      : mesh_(mesh), cfg_(cfg), p_(p), law_(law) {}
+
+  std::vector<ContactPair> build() {
+    nodes_ = node_set(p_.boundary, ".boundary");
+    const std::vector<double> a = mesh_.tributary_measures(nodes_), length = mesh_.tributary_lengths(nodes_);
+    outward_ = mesh_.outward_normals(nodes_);
+    std::vector<char> precrack(mesh_.num_nodes(), 0);
+    if (!p_.precrack.empty()) {
+      bool any = false;
+      for (int n : node_set(p_.precrack, ".precrack")) precrack[n] = 1;
+      for (int n : nodes_) any = any || precrack[n];
+      if (!any) fail(".precrack", "node set '" + p_.precrack + "' has no node of '" + p_.boundary + "'");
+    }
+    if (p_.facing == Facing::Body) match_opposite();
+    std::vector<ContactPair> pairs;
+    for (std::size_t k = 0; k < nodes_.size(); ++k) {
+      if (length[k] <= 0)
+        fail(".boundary", "node set '" + p_.boundary + "' must be a chain of boundary edges (node " +
+                              std::to_string(nodes_[k]) + " at " + point(mesh_.nodes[nodes_[k]]) + " lies on none of its edges)");
+      ContactPair c;
+      c.node = nodes_[k];
+      c.measure = a[k];
+      c.length = length[k];
+      c.beta0 = precrack[c.node] ? 0.0 : per_node("beta0", p_.beta0, k);
+      c.law = law_;
+      face(c, k);
+      pairs.push_back(c);
+    }
+    return pairs;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& setting, const std::string& what) const {
+    throw InputError(cfg_.where(p_.path + setting) + ": " + what);
+  }
+
+  const std::vector<int>& node_set(const std::string& name, const char* setting) const {
+    const std::vector<int>* set = nullptr;
+    try {
+      set = &mesh_.node_set(name);
+    } catch (const InputError& e) {
+      fail(setting, e.what());
+    }
+    if (set->empty()) fail(setting, "node set '" + name + "' has no nodes");
+    return *set;
+  }
+
+  /// Value k of a config list of one value or one per contact node.
+  double per_node(const char* setting, const std::vector<double>& v, std::size_t k) const {
+    if (v.size() != 1 && v.size() != nodes_.size())
+      fail(std::string(".") + setting, "give one value or one per contact node (" + std::to_string(nodes_.size()) +
+                                           "), got " + std::to_string(v.size()));
+    return v.size() == 1 ? v[0] : v[k];
+  }
+
+  /// The frame and gap of node k against what it faces.
+  void face(ContactPair& c, std::size_t k) const {
+    const Eigen::Vector3d& x = mesh_.nodes[c.node];
+    if (p_.facing == Facing::Line) {
+      const FlatFoundation line{Eigen::Vector3d(p_.normal[0], p_.normal[1], 0.0).normalized()};
+      c.frame = line.frame_at(x);
+      c.g0 = per_node("g0", p_.g0, k);
+      require_facing(c.frame.n, k, ".normal", "the foundation normal");
+    } else if (p_.facing == Facing::Circle) {
+      const CircleFoundation circle{Eigen::Vector3d(p_.centre[0], p_.centre[1], 0.0), p_.radius, p_.inside};
+      if ((x - circle.centre).norm() < 1e-12 * p_.radius) fail(".circle", "contact node " + std::to_string(k) + " lies at the centre");
+      c.frame = circle.frame_at(x);
+      c.g0 = circle.gap_at(x);
+      if (c.g0 < -1e-6 * p_.radius) {
+        std::ostringstream m;
+        m << "contact node " << k << " at " << point(x) << " lies " << -c.g0 << " mm inside the rigid part (the circle's "
+          << (p_.inside ? "outside" : "inside") << "); the boundary must lie on the " << (p_.inside ? "inner" : "outer")
+          << " side of the circle";
+        fail(".circle", m.str());
+      }
+      c.g0 = std::max(c.g0, 0.0);  // a node on the circle to round-off
+      require_facing(c.frame.n, k, ".circle.side", "the circle's normal");
+    } else {
+      c.opposite = opposite_[k];
+      // The averaged normal: B's outward and A's inward, from B into A.
+      const Eigen::Vector3d n = outward_opposite_[k] - outward_[k];
+      if (n.norm() < 1e-6 || outward_opposite_[k].dot(outward_[k]) > -0.5)
+        fail(".opposite", "at contact node " + std::to_string(k) + " " + point(x) + " the boundaries of '" + p_.boundary +
+                              "' and '" + p_.opposite + "' do not face each other (their outward normals are not opposite)");
+      c.frame = plane_frame(n.normalized());
+      c.g0 = c.frame.n.dot(x - mesh_.nodes[c.opposite]);
+    }
+  }
+
+  /// A foundation's normal points into the body: against the boundary's outward normal
+  /// (within 60 degrees), not out of the body nor along the interface.
+  void require_facing(const Eigen::Vector3d& n, std::size_t k, const char* setting, const char* what) const {
+    if (-n.dot(outward_[k]) >= 0.5) return;
+    std::ostringstream m;
+    m << what << " (" << n.x() << ", " << n.y() << ") does not point into the body at contact node " << k << " "
+      << point(mesh_.nodes[nodes_[k]]) << ", where the boundary's inward normal is (" << 0.0 - outward_[k].x() << ", "
+      << 0.0 - outward_[k].y() << "); give the normal from the foundation into the body";
+    fail(setting, m.str());
+  }
+
+  /// Pairs each node of the boundary with the node of the opposite set at the same place
+  /// (conforming meshes), both ways one to one.
+  void match_opposite() {
+    const std::vector<int>& other = node_set(p_.opposite, ".opposite");
+    double tolerance = p_.tolerance;
+    if (tolerance == 0) {
+      double shortest = std::numeric_limits<double>::infinity();
+      for (const BoundaryEdge& e : mesh_.boundary_edges(nodes_)) shortest = std::min(shortest, e.length);
+      tolerance = 1e-3 * shortest;
+    }
+    std::vector<int> taken(mesh_.num_nodes(), -1);
+    double worst = 0;
+    int worst_k = -1;
+    for (std::size_t k = 0; k < nodes_.size(); ++k) {
+      const Eigen::Vector3d& x = mesh_.nodes[nodes_[k]];
+      int best = -1;
+      double d_best = std::numeric_limits<double>::infinity();
+      for (int n : other) {
+        const double d = (mesh_.nodes[n] - x).norm();
+        if (d < d_best) d_best = d, best = n;
+      }
+      if (best == nodes_[k])
+        fail(".opposite", "node " + point(x) + " belongs to both '" + p_.boundary + "' and '" + p_.opposite +
+                              "': the bodies share their nodes there; give each body its own curve along the interface "
+                              "(its own points), meshed alike");
+      if (d_best > worst) worst = d_best, worst_k = static_cast<int>(k);
+      if (taken[best] >= 0 && d_best <= tolerance)
+        fail(".opposite", "nodes " + point(x) + " and " + point(mesh_.nodes[nodes_[taken[best]]]) + " of '" + p_.boundary +
+                              "' both face node " + point(mesh_.nodes[best]) + " of '" + p_.opposite + "'");
+      taken[best] = static_cast<int>(k);
+      opposite_.push_back(best);
+    }
+    if (worst > tolerance) {
+      std::ostringstream m;
+      m << "the meshes of '" << p_.boundary << "' and '" << p_.opposite << "' do not match: node "
+        << point(mesh_.nodes[nodes_[worst_k]]) << " of '" << p_.boundary << "' is " << worst << " mm from the nearest node of '"
+        << p_.opposite << "' (tolerance " << tolerance << " mm); mesh both curves alike (Transfinite Curve), or raise "
+        << p_.path << ".tolerance";
+      fail(".opposite", m.str());
+    }
+    if (other.size() != nodes_.size())
+      fail(".opposite", "node set '" + p_.opposite + "' has " + std::to_string(other.size()) + " nodes, '" + p_.boundary +
+                            "' " + std::to_string(nodes_.size()) + ": the meshes along the interface must match node for node");
+    const std::vector<Eigen::Vector3d> outward_b = mesh_.outward_normals(other);
+    std::vector<Eigen::Vector3d> by_node(mesh_.num_nodes(), Eigen::Vector3d::Zero());
+    for (std::size_t j = 0; j < other.size(); ++j) by_node[other[j]] = outward_b[j];
+    for (int n : opposite_) outward_opposite_.push_back(by_node[n]);
+  }
+
+  const Mesh& mesh_;
+  const Config& cfg_;
+  const InterfaceParams& p_;
+  const int law_;
+  std::vector<int> nodes_, opposite_;
+  std::vector<Eigen::Vector3d> outward_, outward_opposite_;
+};
 
 }  // namespace
 
 Interface make_interface(const Mesh& mesh, const Config& cfg) {
   Interface I;
   I.layout.dim = mesh.dim;
+  std::vector<int> owner(mesh.num_nodes(), -1);  // the interface of each contact node
   for (const InterfaceParams& p : cfg.interfaces) {
-    const std::string where = cfg.where(p.path + ".boundary") + ": ";
-    std::vector<int> nodes;
-    try {
-      nodes = mesh.node_set(p.boundary);
-    } catch (const InputError& e) {
-      throw InputError(where + e.what());
-    }
-    if (nodes.empty()) throw InputError(where + "node set '" + p.boundary + "' has no nodes");
-    const std::vector<double> a = mesh.tributary_measures(nodes);
-    const std::vector<Eigen::Vector3d> outward = mesh.outward_normals(nodes);
-    const FlatFoundation foundation{Eigen::Vector3d(p.normal[0], p.normal[1], 0.0).normalized()};
-    for (std::size_t k = 0; k < nodes.size(); ++k) {
-      if (a[k] <= 0)
-        throw InputError(where + "node set '" + p.boundary + "' must be a chain of boundary edges (node " +
-                         std::to_string(nodes[k]) + " lies on none of its edges)");
-      // The foundation's normal points into the body: against the boundary's outward normal
-      // (within 60 degrees), not out of the body nor along the interface.
-      if (-foundation.normal.dot(outward[k]) < 0.5) {
-        const Eigen::Vector3d& x = mesh.nodes[nodes[k]];
-        std::ostringstream m;
-        m << cfg.where(p.path + ".normal") << ": the foundation normal (" << foundation.normal.x() << ", "
-          << foundation.normal.y() << ") does not point into the body at contact node " << k << " (" << x.x() << ", "
-          << x.y() << "), where the boundary's inward normal is (" << 0.0 - outward[k].x() << ", " << 0.0 - outward[k].y()
-          << "); give the normal from the foundation into the body";
-        throw InputError(m.str());
-      }
-      ContactPair c;
-      c.node = nodes[k];
-      c.measure = a[k];
-      c.g0 = per_node(cfg, p, "g0", p.g0, nodes.size(), k);
-      c.beta0 = per_node(cfg, p, "beta0", p.beta0, nodes.size(), k);
-      c.frame = foundation.frame_at(mesh.nodes[c.node]);
-      c.law = static_cast<int>(I.laws.size());
+    const int law = static_cast<int>(I.laws.size());
+    for (const ContactPair& c : PairBuilder(mesh, cfg, p, law).build()) {
+      for (int node : {c.node, c.opposite})
+        if (node >= 0 && owner[node] >= 0)
+          throw InputError(cfg.where(p.path + ".boundary") + ": node " + point(mesh.nodes[node]) + " is on " +
+                           cfg.interfaces[owner[node]].path + " already: a node belongs to one interface (a precrack "
+                           "is a node set of the interface's boundary: " + p.path + ".precrack)");
+      for (int node : {c.node, c.opposite})
+        if (node >= 0) owner[node] = law;
       I.pairs.push_back(c);
     }
     I.laws.push_back(law_of(p));

@@ -334,74 +334,179 @@ TimeFunction read_amplitude(const Reader& r, const Setting& load, double T) {
   return f;
 }
 
-MeshParams read_mesh(const Reader& r, const Setting& root) {
-  const Setting& m = r.group(root, "mesh");
-  r.only(m, {"origin", "size", "nx", "ny", "element", "rotation", "node_sets"});
-  MeshParams p;
-  if (m.exists("origin")) p.origin = r.fixed<2>(m, "origin");
-  p.size = r.fixed<2>(m, "size");
-  for (int k = 0; k < 2; ++k) r.check(p.size[k] > 0, m["size"], "lengths must be > 0", p.size[k]);
-  p.nx = r.integer(m, "nx", 0, true);
-  p.ny = r.integer(m, "ny", 0, true);
-  r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
-  r.check(p.ny >= 1, m["ny"], "must be >= 1", p.ny);
-  p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
-  for (int k = 0; k < 2; ++k)
-    r.check(std::abs(p.origin[k]) + p.size[k] < 1e15, m["size"], "the rectangle must lie within 1e15 mm of 0",
-            p.size[k]);
-  // The assembly's triplets, the matrix and its Cholesky factor (~2.6 kB per unknown at a
-  // million unknowns, measured): refused up front rather than failing after minutes.
-  const double nodes = (p.nx + 1.0) * (p.ny + 1.0), dofs = 2 * nodes;
-  const double bytes = dofs * (600 + 100 * std::log2(std::max(dofs, 2.0)));
-  if (bytes > available_memory())
-    r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + " mesh (" + short_number(dofs) +
-                        " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
-                        short_number(available_memory() / 1e9) + " GB available; use fewer cells");
-  p.rotation = r.number(m, "rotation", 0.0);
-  if (m.exists("node_sets")) {
-    const Setting& sets = m["node_sets"];
-    if (!sets.isList()) r.fail(sets, "must be a list ( { name = ...; box = [...]; }, ... )");
-    for (int i = 0; i < sets.getLength(); ++i) {
-      const Setting& s = sets[i];
-      if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
-      r.only(s, {"name", "box"});
-      NodeSetDef d{r.text(s, "name", "", true), r.fixed<4>(s, "box")};
-      if (d.name.empty()) r.fail(s["name"], "must not be empty");
-      const std::vector<std::string>& builtin = rectangle_set_names();
-      if (std::find(builtin.begin(), builtin.end(), d.name) != builtin.end())
-        r.fail(s["name"], "'" + d.name + "' is a node set every rectangle has; give the box set another name");
-      for (const NodeSetDef& earlier : p.node_sets)
-        if (earlier.name == d.name) r.fail(s["name"], "a node set named '" + d.name + "' is already defined above");
-      if (d.box[0] > d.box[1] || d.box[2] > d.box[3]) r.fail(s["box"], "needs xmin <= xmax and ymin <= ymax");
-      p.node_sets.push_back(d);
-    }
+/// The box node sets of mesh.node_sets.
+std::vector<NodeSetDef> read_box_sets(const Reader& r, const Setting& m, bool rectangle) {
+  std::vector<NodeSetDef> out;
+  if (!m.exists("node_sets")) return out;
+  const Setting& sets = m["node_sets"];
+  if (!sets.isList()) r.fail(sets, "must be a list ( { name = ...; box = [...]; }, ... )");
+  for (int i = 0; i < sets.getLength(); ++i) {
+    const Setting& s = sets[i];
+    if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
+    r.only(s, {"name", "box"});
+    NodeSetDef d{r.text(s, "name", "", true), r.fixed<4>(s, "box")};
+    if (d.name.empty()) r.fail(s["name"], "must not be empty");
+    const std::vector<std::string>& builtin = rectangle_set_names();
+    if (rectangle && std::find(builtin.begin(), builtin.end(), d.name) != builtin.end())
+      r.fail(s["name"], "'" + d.name + "' is a node set every rectangle has; give the box set another name");
+    for (const NodeSetDef& earlier : out)
+      if (earlier.name == d.name) r.fail(s["name"], "a node set named '" + d.name + "' is already defined above");
+    if (d.box[0] > d.box[1] || d.box[2] > d.box[3]) r.fail(s["box"], "needs xmin <= xmax and ymin <= ymax");
+    out.push_back(d);
   }
+  return out;
+}
+
+/// A hash of a file's text, so that a checkpoint restarts a run on the same mesh only.
+std::string file_hash(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  return std::to_string(text.size()) + ":" + std::to_string(std::hash<std::string>()(text));
+}
+
+MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& config_dir) {
+  const Setting& m = r.group(root, "mesh");
+  MeshParams p;
+  if (m.exists("file")) {  // a gmsh file
+    r.only(m, {"file", "refine", "parameters", "node_sets", "rotation", "origin"});
+    const std::string file = r.text(m, "file", "", true);
+    if (file.empty()) r.fail(m["file"], "must not be empty");
+    p.file = file[0] == '/' || config_dir.empty() ? file : config_dir + "/" + file;
+    if (!std::ifstream(p.file)) r.fail(m["file"], "cannot read " + p.file + " (a mesh file is found relative to the config)");
+    p.contents = file_hash(p.file);
+    p.refine = r.integer(m, "refine", 0);
+    if (m.exists("refine")) r.check(p.refine >= 0 && p.refine <= 6, m["refine"], "must be in [0, 6] (each level has 4 times the cells)", p.refine);
+    if (m.exists("parameters")) {
+      const Setting& g = r.group(m, "parameters");
+      for (int i = 0; i < g.getLength(); ++i) p.parameters[g[i].getName()] = r.number(g[i]);
+    }
+  } else {
+    r.only(m, {"origin", "size", "nx", "ny", "element", "rotation", "node_sets"});
+    p.size = r.fixed<2>(m, "size");
+    for (int k = 0; k < 2; ++k) r.check(p.size[k] > 0, m["size"], "lengths must be > 0", p.size[k]);
+    p.nx = r.integer(m, "nx", 0, true);
+    p.ny = r.integer(m, "ny", 0, true);
+    r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
+    r.check(p.ny >= 1, m["ny"], "must be >= 1", p.ny);
+    p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
+  }
+  if (m.exists("origin")) p.origin = r.fixed<2>(m, "origin");
+  for (int k = 0; k < 2; ++k)
+    r.check(std::abs(p.origin[k]) + p.size[k] < 1e15, m.exists("size") ? m["size"] : m, "the mesh must lie within 1e15 mm of 0",
+            p.size[k]);
+  if (p.file.empty()) {
+    // The assembly's triplets, the matrix and its Cholesky factor (~2.6 kB per unknown at a
+    // million unknowns, measured): refused up front rather than failing after minutes.
+    const double nodes = (p.nx + 1.0) * (p.ny + 1.0), dofs = 2 * nodes;
+    const double bytes = dofs * (600 + 100 * std::log2(std::max(dofs, 2.0)));
+    if (bytes > available_memory())
+      r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + " mesh (" + short_number(dofs) +
+                          " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
+                          short_number(available_memory() / 1e9) + " GB available; use fewer cells");
+  }
+  p.rotation = r.number(m, "rotation", 0.0);
+  p.node_sets = read_box_sets(r, m, p.file.empty());
   return p;
 }
 
-MaterialParams read_material(const Reader& r, const Setting& root) {
-  const Setting& mat = r.group(root, "material");
-  r.only(mat, {"E", "nu", "hypothesis"});
+MaterialParams read_material(const Reader& r, const Setting& mat) {
+  if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12)");
   MaterialParams p;
-  p.E = r.number(mat, "E");
-  r.check(p.E > 0, mat["E"], "must be > 0", p.E);
-  p.nu = r.number(mat, "nu");
-  r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
-  p.hypothesis = static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress"}, 0));
+  p.path = mat.getPath();
+  p.hypothesis = static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress", "axisymmetric"}, 0));
+  p.orthotropic = mat.exists("E1");
+  if (!p.orthotropic) {
+    r.only(mat, {"E", "nu", "hypothesis"});
+    p.E = r.number(mat, "E");
+    r.check(p.E > 0, mat["E"], "must be > 0", p.E);
+    p.nu = r.number(mat, "nu");
+    r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
+    return p;
+  }
+  r.only(mat, {"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "angle", "hypothesis"});
+  for (auto [name, v] : {std::pair<const char*, double*>{"E1", &p.E1}, {"E2", &p.E2}, {"E3", &p.E3}, {"G12", &p.G12}}) {
+    *v = r.number(mat, name);
+    r.check(*v > 0, mat[name], "must be > 0", *v);
+  }
+  p.nu12 = r.number(mat, "nu12");
+  p.nu13 = r.number(mat, "nu13");
+  p.nu23 = r.number(mat, "nu23");
+  p.angle = r.number(mat, "angle", 0.0);
+  // A positive definite compliance (each nu_ij^2 < E_i / E_j, and the determinant of the
+  // normal block positive): otherwise no strain energy is positive.
+  const double n21 = p.nu12 * p.E2 / p.E1, n31 = p.nu13 * p.E3 / p.E1, n32 = p.nu23 * p.E3 / p.E2;
+  const double det = 1 - p.nu12 * n21 - p.nu23 * n32 - p.nu13 * n31 - 2 * n21 * n32 * p.nu13;
+  for (auto [name, ok] : {std::pair<const char*, bool>{"nu12", p.nu12 * p.nu12 < p.E1 / p.E2},
+                          {"nu13", p.nu13 * p.nu13 < p.E1 / p.E3}, {"nu23", p.nu23 * p.nu23 < p.E2 / p.E3}})
+    if (!ok) r.fail(mat[name], "is too large for the moduli: the material would not be stable (nu_ij^2 < E_i / E_j)");
+  if (det <= 0)
+    r.fail(mat, "the Poisson's ratios make the material unstable (1 - nu12 nu21 - nu23 nu32 - nu13 nu31 - 2 nu21 nu32 nu13 = " +
+                    short_number(det) + " <= 0)");
   return p;
+}
+
+/// The bodies and their materials: `material` for every body, or `bodies` by name.
+std::vector<BodyParams> read_bodies(const Reader& r, const Setting& root) {
+  const bool one = root.exists("material"), several = root.exists("bodies");
+  if (one == several) r.fail(root, "give exactly one of 'material' (one material for every body) or 'bodies' (one per body of the mesh)");
+  if (one) return {{"", read_material(r, r.group(root, "material"))}};
+  const Setting& list = root["bodies"];
+  if (!list.isList() || list.getLength() == 0) r.fail(list, "must be a list ( { name = \"...\"; material = { ... }; }, ... )");
+  std::vector<BodyParams> out;
+  for (int i = 0; i < list.getLength(); ++i) {
+    const Setting& b = list[i];
+    if (!b.isGroup()) r.fail(b, "must be a group { name = \"...\"; material = { ... }; }");
+    r.only(b, {"name", "material"});
+    BodyParams p{r.text(b, "name", "", true), read_material(r, r.group(b, "material"))};
+    for (const BodyParams& earlier : out)
+      if (earlier.name == p.name) r.fail(b["name"], "body '" + p.name + "' has a material already");
+    const Setting& mat = b["material"];
+    if (!out.empty() && p.material.hypothesis != out.front().material.hypothesis)
+      r.fail(mat.exists("hypothesis") ? mat["hypothesis"] : mat, "the hypothesis (plane strain, plane stress or axisymmetric) must be the same for every body");
+    out.push_back(p);
+  }
+  return out;
 }
 
 InterfaceParams read_interface(const Reader& r, const Setting& in) {
-  r.only(in, {"boundary", "normal", "Cn", "Ct", "w", "alpha", "mu", "beta0", "g0"});
+  if (!in.isGroup()) r.fail(in, "must be a group { boundary = ...; Cn = ...; ... }");
+  r.only(in, {"boundary", "normal", "circle", "opposite", "tolerance", "precrack", "Cn", "Ct", "w", "alpha", "mu", "beta0", "g0"});
   InterfaceParams p;
   p.path = in.getPath();
   p.boundary = r.text(in, "boundary", "", true);
+  const int facings = in.exists("normal") + in.exists("circle") + in.exists("opposite");
+  if (facings > 1) r.fail(in, "give one of 'normal' (a rigid line), 'circle' (a rigid circle) or 'opposite' (another body)");
   if (in.exists("normal")) {
     p.normal = r.fixed<2>(in, "normal");
     const double len = std::hypot(p.normal[0], p.normal[1]);
     r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
     p.normal = {p.normal[0] / len, p.normal[1] / len};
   }
+  if (in.exists("circle")) {
+    const Setting& c = r.group(in, "circle");
+    r.only(c, {"centre", "radius", "side"});
+    p.facing = Facing::Circle;
+    p.centre = r.fixed<2>(c, "centre");
+    p.radius = r.number(c, "radius");
+    r.check(p.radius > 0, c["radius"], "must be > 0", p.radius);
+    if (!c.exists("side")) r.fail(c, "missing setting 'side': \"inside\" (the body fills a circular hole) or \"outside\" (it wraps a cylinder)");
+    p.inside = r.choice(c, "side", {"inside", "outside"}, 0) == 0;
+  }
+  if (in.exists("opposite")) {
+    p.facing = Facing::Body;
+    p.opposite = r.text(in, "opposite", "");
+    if (p.opposite.empty()) r.fail(in["opposite"], "must name the node set of the other body along the interface");
+    if (p.opposite == p.boundary) r.fail(in["opposite"], "must be another node set than 'boundary'");
+  }
+  p.tolerance = r.number(in, "tolerance", 0.0);
+  if (in.exists("tolerance")) {
+    r.check(p.tolerance > 0, in["tolerance"], "must be > 0", p.tolerance);
+    if (p.facing != Facing::Body) r.fail(in["tolerance"], "applies to an interface between two bodies ('opposite')");
+  }
+  p.precrack = r.text(in, "precrack", "");
+  if (in.exists("precrack") && p.precrack.empty()) r.fail(in["precrack"], "must name a node set");
+  if (in.exists("g0") && p.facing != Facing::Line)
+    r.fail(in["g0"], "the gap of a circle or of two bodies comes from their geometry: leave g0 out");
   p.Cn = r.number(in, "Cn");
   r.check(p.Cn > 0, in["Cn"], "must be > 0", p.Cn);
   p.Ct = r.number(in, "Ct");
@@ -424,6 +529,18 @@ InterfaceParams read_interface(const Reader& r, const Setting& in) {
     for (double g : p.g0) r.check(g >= 0, in["g0"], "must be >= 0", g);
   }
   return p;
+}
+
+/// `interface` (one) or `interfaces` (a list).
+std::vector<InterfaceParams> read_interfaces(const Reader& r, const Setting& root) {
+  const bool one = root.exists("interface"), several = root.exists("interfaces");
+  if (one == several) r.fail(root, "give exactly one of 'interface' (one interface) or 'interfaces' (a list of them)");
+  if (one) return {read_interface(r, r.group(root, "interface"))};
+  const Setting& list = root["interfaces"];
+  if (!list.isList() || list.getLength() == 0) r.fail(list, "must be a list ( { boundary = ...; ... }, ... )");
+  std::vector<InterfaceParams> out;
+  for (int i = 0; i < list.getLength(); ++i) out.push_back(read_interface(r, list[i]));
+  return out;
 }
 
 TimeParams read_time(const Reader& r, const Setting& root) {
@@ -456,9 +573,13 @@ std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double 
     p.path = l.getPath();
     p.node_set = r.text(l, "node_set", "", true);
     if (!l.exists("type")) r.fail(l, "missing setting 'type'");
-    p.kind = static_cast<LoadKind>(r.choice(l, "type", {"displacement", "force", "traction"}, 0));
-    if (!l.exists("component")) r.fail(l, "missing setting 'component'");
-    p.component = r.choice(l, "component", {"x", "y"}, 0);
+    p.kind = static_cast<LoadKind>(r.choice(l, "type", {"displacement", "force", "traction", "pressure"}, 0));
+    if (p.kind == LoadKind::Pressure) {
+      if (l.exists("component")) r.fail(l["component"], "a pressure acts along the boundary's normal: leave 'component' out");
+    } else {
+      if (!l.exists("component")) r.fail(l, "missing setting 'component'");
+      p.component = r.choice(l, "component", {"x", "y"}, 0);
+    }
     p.amplitude = read_amplitude(r, l, T);
     out.push_back(p);
   }
@@ -588,10 +709,10 @@ void check_consistency(const Reader& r, const Setting& root, Config& c) {
 Config read(const Reader& r, const Setting& root, const std::string& path) {
   Config c;
   c.file = path;
-  r.only(root, {"mesh", "material", "interface", "loads", "time", "solver", "integrator", "output"});
-  c.mesh = read_mesh(r, root);
-  c.material = read_material(r, root);
-  c.interfaces.push_back(read_interface(r, r.group(root, "interface")));
+  r.only(root, {"mesh", "material", "bodies", "interface", "interfaces", "loads", "time", "solver", "integrator", "output"});
+  c.mesh = read_mesh(r, root, std::filesystem::path(path).parent_path().string());
+  c.bodies = read_bodies(r, root);
+  c.interfaces = read_interfaces(r, root);
   c.time = read_time(r, root);
   c.loads = read_loads(r, root, c.time.T);
   c.solver = read_solver(r, root);

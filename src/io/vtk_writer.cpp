@@ -31,7 +31,6 @@ const std::vector<std::string> tensor_components = {"xx", "xy", "xz", "yx", "yy"
 
 void VtkWriter::write_bodies(const std::string& file, const BodyState& b) const {
   const Mesh& mesh = model_.mesh();
-  const MaterialParams& mat = model_.material();
   VtkFile vtu(VtkFile::Kind::UnstructuredGrid);
   std::vector<double> xyz, u;
   for (int n = 0; n < mesh.num_nodes(); ++n) {
@@ -43,20 +42,20 @@ void VtkWriter::write_bodies(const std::string& file, const BodyState& b) const 
   for (const auto& cell : mesh.cells) types.push_back(cell.size() == 3 ? 5 : 9);  // VTK_TRIANGLE, VTK_QUAD
   vtu.cells(mesh.cells, types);
   vtu.point_data(VtkFile::floats("displacement", 3, u, {"x", "y", "z"}));
-  // Plane strain: eps_zz = 0, sigma_zz = nu (sigma_xx + sigma_yy); plane stress: sigma_zz = 0,
-  // eps_zz = -nu / (1 - nu) (eps_xx + eps_yy). Shear as tensor components (gamma / 2).
-  const Eigen::Matrix3Xd eps = cell_strains(mesh, b.u);
-  const Eigen::Matrix3Xd sigma = hooke_matrix(mat) * eps;
-  const bool strain = mat.hypothesis == Hypothesis::PlaneStrain;
+  // The out-of-plane components from each body's material (Material::complete): eps_zz = 0
+  // and sigma_zz from the law in plane strain, sigma_zz = 0 in plane stress, the hoop
+  // components axisymmetric. Shear as tensor components (gamma / 2).
+  const CellFields f = cell_fields(mesh, model_.materials(), b.u);
   std::vector<double> strain_t, stress_t, von_mises;
-  for (Eigen::Index c = 0; c < eps.cols(); ++c) {
-    const double szz = strain ? mat.nu * (sigma(0, c) + sigma(1, c)) : 0.0;
-    const double ezz = strain ? 0.0 : -mat.nu / (1 - mat.nu) * (eps(0, c) + eps(1, c));
-    push_tensor(strain_t, eps(0, c), eps(1, c), 0.5 * eps(2, c), ezz);
-    push_tensor(stress_t, sigma(0, c), sigma(1, c), sigma(2, c), szz);
-    const double a = sigma(0, c) - sigma(1, c), d = sigma(1, c) - szz, e = szz - sigma(0, c);
-    von_mises.push_back(std::sqrt(0.5 * (a * a + d * d + e * e) + 3 * sigma(2, c) * sigma(2, c)));
+  std::vector<std::int64_t> body(mesh.cell_body.begin(), mesh.cell_body.end());
+  for (Eigen::Index c = 0; c < f.strain.cols(); ++c) {
+    const Voigt eps = f.strain.col(c), sigma = f.stress.col(c);
+    push_tensor(strain_t, eps[0], eps[1], 0.5 * eps[2], eps[3]);
+    push_tensor(stress_t, sigma[0], sigma[1], sigma[2], sigma[3]);
+    const double a = sigma[0] - sigma[1], d = sigma[1] - sigma[3], e = sigma[3] - sigma[0];
+    von_mises.push_back(std::sqrt(0.5 * (a * a + d * d + e * e) + 3 * sigma[2] * sigma[2]));
   }
+  vtu.cell_data(VtkFile::integers("body", "Int32", body));  // an index in the report's list of bodies
   vtu.cell_data(VtkFile::floats("strain", 9, strain_t, tensor_components));
   vtu.cell_data(VtkFile::floats("stress", 9, stress_t, tensor_components));
   vtu.cell_data(VtkFile::floats("von_Mises", 1, von_mises));

@@ -2,8 +2,10 @@
 
 #include "rccm/base/errors.hpp"
 #include "rccm/base/memory.hpp"
+#include "rccm/base/suggest.hpp"
 #include "rccm/fem/elasticity.hpp"
 
+#include <algorithm>
 #include <sstream>
 
 namespace rccm {
@@ -38,6 +40,43 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
   return out;
 }
 
+/// The material of each body of the mesh, from the config's `material` (every body) or
+/// `bodies` (by name, each body once).
+std::vector<Material> body_materials(const Config& cfg, const Mesh& mesh) {
+  if (cfg.bodies.size() == 1 && cfg.bodies[0].name.empty())
+    return std::vector<Material>(mesh.body_names.size(), Material(cfg.bodies[0].material));
+  std::vector<Material> out;
+  for (const std::string& name : mesh.body_names) {
+    const auto it = std::find_if(cfg.bodies.begin(), cfg.bodies.end(), [&](const BodyParams& b) { return b.name == name; });
+    if (it == cfg.bodies.end())
+      throw InputError(cfg.where("bodies") + ": the mesh's body '" + name + "' has no material: add { name = \"" + name +
+                       "\"; material = { ... }; } to bodies");
+    out.emplace_back(it->material);
+  }
+  for (std::size_t k = 0; k < cfg.bodies.size(); ++k)
+    if (std::find(mesh.body_names.begin(), mesh.body_names.end(), cfg.bodies[k].name) == mesh.body_names.end())
+      throw InputError(cfg.where("bodies.[" + std::to_string(k) + "].name") + ": the mesh has no body named '" +
+                       cfg.bodies[k].name + "'" + suggestion(cfg.bodies[k].name, mesh.body_names));
+  return out;
+}
+
+/// An axisymmetric mesh lies in r = x >= 0 and holds u_r = 0 on the axis.
+std::vector<int> axis_supports(const Config& cfg, const Mesh& mesh, double size) {
+  std::vector<int> dofs;
+  if (!mesh.axisymmetric) return dofs;
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    const double r = mesh.nodes[n].x();
+    if (r < -1e-9 * size) {
+      std::ostringstream m;
+      m << cfg.where(cfg.bodies.front().material.path + ".hypothesis") << ": an axisymmetric mesh lies in x = r >= 0; node "
+        << n << " lies at r = " << r;
+      throw InputError(m.str());
+    }
+    if (r <= 1e-9 * size) dofs.push_back(mesh.dof(n, 0));
+  }
+  return dofs;
+}
+
 /// The largest distance between two nodes of a cell.
 double largest_cell(const Mesh& mesh) {
   double h = 0;
@@ -50,9 +89,12 @@ double largest_cell(const Mesh& mesh) {
 }  // namespace
 
 Model::Model(const Config& cfg, Mesh mesh)
-    : mesh_(std::move(mesh)), material_(cfg.material), size_(extent(mesh_)), interface_(make_interface(mesh_, cfg)) {
+    : mesh_(std::move(mesh)), size_(extent(mesh_)) {
   for (const Eigen::Vector3d& x : mesh_.nodes)
     if (!x.allFinite()) throw InputError(cfg.file + ": mesh: node coordinates overflow (the mesh is too large)");
+  mesh_.axisymmetric = cfg.hypothesis() == Hypothesis::Axisymmetric;
+  materials_ = body_materials(cfg, mesh_);
+  interface_ = make_interface(mesh_, cfg);
   // The dense interface operators: W0 and the factor block it comes from, the exact step's
   // matrix, its LU and its inverse, each (dim m)^2 doubles.
   const double m = interface_.layout.offset(interface_.size());
@@ -61,17 +103,20 @@ Model::Model(const Config& cfg, Mesh mesh)
                  std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
                  "use a coarser interface mesh, or solver.active_set_max_nodes below the contact node count");
   loads_ = make_load_cases(mesh_, cfg);
-  if (prescribed_dofs(loads_).size() == static_cast<std::size_t>(mesh_.num_dofs()))
+  supports_ = prescribed_dofs(loads_);
+  for (int d : axis_supports(cfg, mesh_, size_))
+    if (std::find(supports_.begin(), supports_.end(), d) == supports_.end()) supports_.push_back(d);
+  if (supports_.size() == static_cast<std::size_t>(mesh_.num_dofs()))
     throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
   check_prescribed_gaps(cfg);
-  K_ = assemble_stiffness(mesh_, cfg.material);
+  K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);
   std::vector<int> interface_dofs;
   for (const ContactPair& c : interface_.pairs)
     for (int node : {c.node, c.opposite})
       for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
   try {
-    body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), prescribed_dofs(loads_), interface_dofs);
+    body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), supports_, interface_dofs);
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }
@@ -98,7 +143,7 @@ void Model::check_prescribed_gaps(const Config& cfg) const {
     for (double t : lc.amplitude.t)
       if (t > 0 && t < cfg.time.T) times.push_back(t);
   std::vector<char> prescribed(mesh_.num_dofs(), 0);
-  for (int d : prescribed_dofs(loads_)) prescribed[d] = 1;
+  for (int d : supports_) prescribed[d] = 1;
   for (int i = 0; i < interface_.size(); ++i) {
     const ContactPair& c = interface_.pairs[i];
     if (c.opposite >= 0) continue;
@@ -133,7 +178,7 @@ void Model::check_restrained(const Config& cfg) const {
   if (loose < 0) return;
   const Eigen::VectorXd tangential = beta0.cwiseProduct(beta0), normal = Eigen::VectorXd::Ones(beta0.size());
   try {
-    ElasticProblem(K_, interface_.springs(tangential, normal), prescribed_dofs(loads_));
+    ElasticProblem(K_, interface_.springs(tangential, normal), supports_);
   } catch (const InputError&) {
     throw InputError(cfg.where(cfg.interfaces[interface_.pairs[loose].law].path + ".mu") +
                      ": the body is not restrained: with mu = 0 and beta0 = 0 the interface is frictionless and "

@@ -52,7 +52,7 @@ TEST_CASE("every bad config is refused with file, line and setting", "[config]")
 
 TEST_CASE("integers convert to numbers and tables are piecewise linear", "[config]") {
   const Config c = test::config_from_text(good);
-  CHECK(c.material.E == 1000.0);  // written as an integer
+  CHECK(c.bodies.at(0).material.E == 1000.0);  // written as an integer
   const TimeFunction& f = c.loads[0].amplitude;
   CHECK(f(0.25) == Approx(0.1));
   CHECK(f(0.75) == Approx(0.15));
@@ -98,6 +98,6 @@ time = { T = 1.0; };
   Config c;
   CHECK_NOTHROW(c = load_config("sub/main.cfg"));
   fs::current_path(cwd);
-  CHECK(c.material.E == 1000.0);
+  CHECK(c.bodies.at(0).material.E == 1000.0);
   fs::remove_all(dir);
 }

@@ -22,42 +22,74 @@ struct NodeSetDef {
 };
 
 enum class ElementType { T3, Q4 };
-enum class Hypothesis { PlaneStrain, PlaneStress };
+enum class Hypothesis { PlaneStrain, PlaneStress, Axisymmetric };
 
-/// The built-in mesh source: a structured rectangle.
+/// The mesh source: a gmsh file (`file` set) or the built-in structured rectangle.
 struct MeshParams {
+  std::string file;                        // a .msh (MSH 2.2 or 4.1) or .geo file, relative to the config; empty: the rectangle
+  int refine = 0;                          // file: uniform refinements (each splits every cell in 4)
+  std::map<std::string, double> parameters;  // .geo: values of its DefineConstant[ name = {..., Name "name"} ]
+  std::string contents;                    // file: a hash of its text (the fingerprint covers the mesh, not its name)
   std::array<double, 2> origin{0.0, 0.0};  // mm
   std::array<double, 2> size{};            // mm
   int nx = 0, ny = 0;                      // cells along x and y
   ElementType element = ElementType::T3;
   double rotation = 0.0;                   // degrees, counter-clockwise about `origin`
-  std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners
+  std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners (or the file's groups)
 };
 
+/// Linear elasticity of one body (docs/MODEL.md s1): isotropic (E, nu) or orthotropic with
+/// material axes 1, 2 in the plane (axis 1 at `angle` from x) and 3 out of it (the hoop
+/// direction of an axisymmetric body).
 struct MaterialParams {
+  std::string path = "material";  // its section in the config, for messages
+  bool orthotropic = false;
   double E = 0.0;   // Young's modulus, MPa
   double nu = 0.0;  // Poisson's ratio, in (-1, 0.5)
+  double E1 = 0.0, E2 = 0.0, E3 = 0.0;        // MPa
+  double nu12 = 0.0, nu13 = 0.0, nu23 = 0.0;  // nu_ij = -strain_j / strain_i under stress along i
+  double G12 = 0.0;                           // in-plane shear modulus, MPa
+  double angle = 0.0;                         // degrees, from x to axis 1, counter-clockwise
   Hypothesis hypothesis = Hypothesis::PlaneStrain;
 };
 
-/// An interface obeying the RCCM law (docs/MODEL.md s2-3): a node set facing a rigid flat
-/// foundation.
+/// A body of the mesh (a physical surface of a gmsh file) and its material; `name` empty:
+/// every cell (the config's single `material` section).
+struct BodyParams {
+  std::string name;
+  MaterialParams material;
+};
+
+/// What the contact nodes of an interface face (docs/MODEL.md s2).
+enum class Facing { Line, Circle, Body };
+
+/// An interface obeying the RCCM law (docs/MODEL.md s2-3): a node set facing a rigid line, a
+/// rigid circle, or the node set of another body.
 struct InterfaceParams {
   std::string path = "interface";          // its section in the config, for messages
-  std::string boundary;                    // node set of the contact nodes
-  std::array<double, 2> normal{0.0, 1.0};  // foundation normal, into the body (unit)
+  std::string boundary;                    // node set of the contact nodes (body A)
+  Facing facing = Facing::Line;
+  std::array<double, 2> normal{0.0, 1.0};  // line: its normal, into the body (unit)
+  std::array<double, 2> centre{};          // circle: centre, mm (global frame)
+  double radius = 0.0;                     // circle: radius, mm
+  bool inside = true;                      // circle: the body lies inside it (a hole), or outside (a cylinder)
+  std::string opposite;                    // body: node set of body B along the interface
+  double tolerance = 0.0;                  // body: largest distance of matched nodes, mm; 0: 1e-3 of the shortest edge
+  std::string precrack;                    // node set whose contact nodes start at beta0 = 0; empty: none
   double Cn = 0.0, Ct = 0.0;               // initial stiffnesses, MPa/mm
   double w = 0.0;                          // adhesion energy threshold, mJ/mm^2 = N/mm
   double alpha = 1.0;                      // viscosity, N s/mm
   double mu = 0.0;                         // Coulomb coefficient
   std::vector<double> beta0{1.0};          // one value, or one per contact node
-  std::vector<double> g0{0.0};             // initial gap, mm: one value, or one per contact node
+  std::vector<double> g0{0.0};             // initial gap, mm: one value, or one per contact node (line)
 };
 
-enum class LoadKind { Displacement, Force, Traction };
+enum class LoadKind { Displacement, Force, Traction, Pressure };
 
 /// A load on one component of a node set, scaled in time by `amplitude`.
-/// Displacement: mm per node; Force: N per node; Traction: MPa along the set's edges.
+/// Displacement: mm per node; Force: N per node (axisymmetric: on the whole ring);
+/// Traction: MPa along the set's edges; Pressure: MPa normal to them, pushing into the body
+/// (no component).
 struct LoadParams {
   std::string path;  // "loads.[k]", for messages
   std::string node_set;
@@ -123,6 +155,9 @@ struct OutputParams {
 };
 
 struct Config {
+  /// The hypothesis of the bodies (one for all of them, checked on reading).
+  Hypothesis hypothesis() const { return bodies.front().material.hypothesis; }
+
   std::string file;                  // path it was read from
   std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
   /// Fingerprint of every parsed value that shapes the results (all but output.directory and
@@ -136,8 +171,8 @@ struct Config {
   std::string where(const std::string& path) const;
 
   MeshParams mesh;
-  MaterialParams material;
-  std::vector<InterfaceParams> interfaces;  // one today: the `interface` section
+  std::vector<BodyParams> bodies;           // `material` (one, for every cell) or `bodies`
+  std::vector<InterfaceParams> interfaces;  // `interface` (one) or `interfaces`
   std::vector<LoadParams> loads;
   TimeParams time;
   SolverParams solver;

@@ -1,22 +1,25 @@
-// Isotropic linear elasticity in plane strain or plane stress: element stiffness,
-// global assembly, strains and stresses (docs/MODEL.md s1).
+// Linear elasticity of the bodies of a mesh in plane strain, plane stress or axisymmetry:
+// element stiffness, global assembly, strains and stresses (docs/MODEL.md s1).
 #pragma once
 
-#include "rccm/base/config.hpp"
+#include "rccm/fem/material.hpp"
 #include "rccm/fem/mesh.hpp"
 #include "rccm/la/sparse.hpp"
 
 #include <Eigen/Core>
 
+#include <vector>
+
 namespace rccm {
 
-/// Hooke matrix D (Voigt order xx, yy, xy with engineering shear), MPa.
-Eigen::Matrix3d hooke_matrix(const MaterialParams& m);
+/// Global stiffness K (DOFs mesh.dof(n, c)) with the material of each cell's body:
+/// K = sum_e int B^T D B dV, dV = dA per unit thickness, or 2 pi r dA (axisymmetric), N/mm.
+SparseMatrix assemble_stiffness(const Mesh& mesh, const std::vector<Material>& body_materials);
 
-/// Global stiffness K (DOFs mesh.dof(n, c)), N/mm per unit thickness.
-SparseMatrix assemble_stiffness(const Mesh& mesh, const MaterialParams& m);
-
-/// Strain (xx, yy, xy engineering) at each cell centre for nodal displacements u.
-Eigen::Matrix3Xd cell_strains(const Mesh& mesh, const Eigen::VectorXd& u);
+/// Strain and stress (Voigt xx, yy, xy, zz; Material::complete) at each cell centre.
+struct CellFields {
+  Eigen::Matrix4Xd strain, stress;
+};
+CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_materials, const Eigen::VectorXd& u);
 
 }  // namespace rccm

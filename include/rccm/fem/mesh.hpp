@@ -19,13 +19,27 @@ struct Placement {
   Eigen::Vector3d operator()(const Eigen::Vector3d& x) const { return origin + rotation * (x - origin); }
 };
 
+/// A boundary facet of a node set (2D: an edge a-b), with its outward unit normal and the
+/// consistent weights int N_a dS, int N_b dS of its end nodes (dS = ds, or 2 pi r ds on an
+/// axisymmetric mesh).
+struct BoundaryEdge {
+  int a = -1, b = -1;
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  double weight_a = 0, weight_b = 0;  // mm (axisymmetric: mm^2)
+  double length = 0;                  // mm
+};
+
 struct Mesh {
   int dim = 2;
+  bool axisymmetric = false;                     // a meridian section (x = r >= 0, y = z): measures carry 2 pi r
   std::vector<Eigen::Vector3d> nodes;            // mm; z = 0 in 2D
   std::vector<std::vector<int>> cells;           // node lists, counter-clockwise in 2D
+  std::vector<int> cell_body;                    // body of each cell: an index in body_names
+  std::vector<std::string> body_names;           // the bodies (physical surfaces of a gmsh file; "body" for the rectangle)
   std::vector<std::vector<int>> facets;          // boundary facets (edges in 2D), each of one cell only
   std::map<std::string, std::vector<int>> node_sets;
   Placement placement;
+  std::string source;                            // the file it was read from, for messages ("" for the rectangle)
 
   int num_nodes() const { return static_cast<int>(nodes.size()); }
   /// Degrees of freedom: `dim` per node, dof(n, c) = dim n + c.
@@ -39,13 +53,19 @@ struct Mesh {
   /// Boundary facets whose nodes all belong to `set`.
   std::vector<std::vector<int>> facets_within(const std::vector<int>& set) const;
 
-  /// Unit outward normal of the boundary per node of `set`: the average of its facets' in the
-  /// set, weighted by their measure; zero for a node on no such facet.
+  /// The boundary edges within `set`, with their outward normals and nodal weights.
+  std::vector<BoundaryEdge> boundary_edges(const std::vector<int>& set) const;
+
+  /// Unit outward normal of the boundary per node of `set`: the average of its edges' in the
+  /// set, weighted by their length; zero for a node on no such edge.
   std::vector<Eigen::Vector3d> outward_normals(const std::vector<int>& set) const;
 
-  /// Lumped facet measure per node of `set` (2D: half the length of each adjacent edge in
-  /// the set), mm; 0 for a node on no such facet.
+  /// Consistent (= lumped, for linear edges) measure per node of `set`: int N_i dS over its
+  /// edges in the set, mm (axisymmetric: mm^2, the area of the ring); 0 on no such edge.
   std::vector<double> tributary_measures(const std::vector<int>& set) const;
+
+  /// Half the length of each adjacent edge in `set`, mm (in the plane of the mesh).
+  std::vector<double> tributary_lengths(const std::vector<int>& set) const;
 };
 
 }  // namespace rccm

@@ -1,5 +1,6 @@
-// The rigid foundation an interface faces, and the local frame it gives each contact node
-// (docs/MODEL.md s2): today a flat one, given by its unit normal pointing into the body.
+// The rigid foundation an interface faces, and the local frame and initial gap it gives each
+// contact node (docs/MODEL.md s2): a line, given by its unit normal pointing into the body,
+// or a circle with the body inside it (a hole) or outside it (a cylinder).
 #pragma once
 
 #include <Eigen/Core>
@@ -17,10 +18,22 @@ struct Frame {
   const Eigen::Vector3d& axis(int k, int dim) const { return k == dim - 1 ? n : (k == 0 ? t1 : t2); }
 };
 
+/// 2D: the frame of unit normal n, with t = (n_y, -n_x) (t, n right-handed like x, y).
+Frame plane_frame(const Eigen::Vector3d& n);
+
 struct FlatFoundation {
   Eigen::Vector3d normal = Eigen::Vector3d::UnitY();  // unit, into the body
-  /// 2D: n and t = (n_y, -n_x) (t, n right-handed like x, y).
+  Frame frame_at(const Eigen::Vector3d&) const { return plane_frame(normal); }
+};
+
+struct CircleFoundation {
+  Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+  double radius = 0;
+  bool inside = true;  // the body inside the circle: n points to the centre
+  /// The radial frame at x: n from the circle into the body.
   Frame frame_at(const Eigen::Vector3d& x) const;
+  /// The distance from the circle to x along n (negative: x lies in the rigid part).
+  double gap_at(const Eigen::Vector3d& x) const;
 };
 
 }  // namespace rccm

@@ -1,5 +1,5 @@
 // The interface Gamma_c as a list of contact pairs (docs/MODEL.md s2): a node of a body
-// facing a rigid foundation (or, later, a node of another body), with its local frame,
+// facing a rigid foundation or the matching node of another body, with its local frame,
 // initial gap, tributary measure and RCCM law; and the operator P from the global
 // displacement to the pairs' local relative displacements.
 #pragma once
@@ -20,7 +20,8 @@ namespace rccm {
 struct ContactPair {
   int node = -1;       // mesh node of the body the normal points into
   int opposite = -1;   // mesh node it faces on another body, or -1: a rigid foundation
-  double measure = 0;  // tributary measure a_i (2D: length), mm
+  double measure = 0;  // tributary measure a_i (2D: length, mm; axisymmetric: the ring's area, mm^2)
+  double length = 0;   // tributary length in the plane of the mesh, mm
   double g0 = 0;       // initial gap, mm
   double beta0 = 1;    // initial adhesion intensity
   Frame frame;
@@ -47,7 +48,8 @@ struct Interface {
 
 /// The contact pairs of every interface of the config on `mesh`; throws InputError
 /// "file:line: interface.boundary: ..." when a node set is unknown, empty or not a chain of
-/// boundary edges, or a per-node list has the wrong length.
+/// boundary edges, a per-node list has the wrong length, a foundation does not face the
+/// body, or two node sets of a body-body interface do not match (naming the worst node).
 Interface make_interface(const Mesh& mesh, const Config& cfg);
 
 }  // namespace rccm

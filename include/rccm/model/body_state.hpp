@@ -17,8 +17,8 @@ struct BodyState {
   Eigen::VectorXd f_ext;      // K u - P^T r: applied forces, and reactions at prescribed DOFs, N
   Eigen::VectorXd r;          // interface force Rbar + Radh (local components per pair), N
   std::vector<double> value;         // per load: prescribed value (mm) or applied amplitude (N, MPa)
-  std::vector<double> force;         // per load: resultant of f_ext over its DOFs, N
-  std::vector<double> displacement;  // per load: mean displacement of its DOFs, mm
+  std::vector<double> force;         // per load: resultant of f_ext along it (LoadCase::along), N
+  std::vector<double> displacement;  // per load: mean displacement of its nodes along it, mm
 };
 
 BodyState body_state(const Model& model, const InterfaceState& s);

@@ -9,6 +9,7 @@
 #include "rccm/contact/contact_problem.hpp"
 #include "rccm/fem/elastic_problem.hpp"
 #include "rccm/fem/loads.hpp"
+#include "rccm/fem/material.hpp"
 #include "rccm/fem/mesh.hpp"
 #include "rccm/interface/interface.hpp"
 
@@ -28,7 +29,8 @@ class Model {
   Model& operator=(const Model&) = delete;
 
   const Mesh& mesh() const { return mesh_; }
-  const MaterialParams& material() const { return material_; }
+  /// The material of each body of the mesh (Mesh::body_names).
+  const std::vector<Material>& materials() const { return materials_; }
   const Interface& interface() const { return interface_; }
   const Condensation& condensation() const { return *condensation_; }
   int contact_nodes() const { return interface_.size(); }
@@ -49,6 +51,8 @@ class Model {
 
   const SparseMatrix& stiffness() const { return K_; }  // bare K, all DOFs
   const std::vector<LoadCase>& loads() const { return loads_; }
+  /// The DOFs held: prescribed by the loads, and u_r on the axis of an axisymmetric mesh.
+  const std::vector<int>& supports() const { return supports_; }
 
  private:
   /// Throws InputError when no contact state can hold the body (a frictionless, unbonded interface).
@@ -57,10 +61,11 @@ class Model {
   void check_prescribed_gaps(const Config& cfg) const;
 
   Mesh mesh_;
-  MaterialParams material_;
+  std::vector<Material> materials_;
   double size_ = 0;
   Interface interface_;
   std::vector<LoadCase> loads_;
+  std::vector<int> supports_;
   SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;

@@ -1,0 +1,19 @@
+// The gmsh mesh source: a .msh file (MSH 2.2 or 4.1) or a .geo file meshed at load, through
+// the gmsh C++ API. Physical groups name everything: each Physical Surface is a body (its
+// cells, T3 or Q4), each Physical Curve a node set along its line elements (in their order),
+// each Physical Point a node set of one node; a body's name is also the node set of all its
+// nodes. Two bodies glued by an interface have each their own curve along it.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/fem/mesh.hpp"
+
+#include <string>
+
+namespace rccm {
+
+/// Reads `p.file` (refined `p.refine` times; a .geo with `p.parameters` set). Throws
+/// InputError "<where>: <file>: ..." naming the physical group of a mesh problem.
+Mesh read_gmsh(const MeshParams& p, const std::string& where);
+
+}  // namespace rccm

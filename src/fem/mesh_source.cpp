@@ -1,0 +1,50 @@
+#include "rccm/fem/mesh_source.hpp"
+
+#include "rccm/base/errors.hpp"
+#include "rccm/fem/gmsh_mesh.hpp"
+#include "rccm/fem/rectangle_mesh.hpp"
+
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+
+namespace rccm {
+
+Mesh make_mesh(const Config& cfg) {
+  if (cfg.mesh.file.empty()) return make_rectangle(cfg.mesh);
+  Mesh m = read_gmsh(cfg.mesh, cfg.where("mesh.file"));
+  try {
+    add_box_sets(m, cfg.mesh.node_sets);
+  } catch (const InputError& e) {
+    throw InputError(cfg.where("mesh.node_sets") + ": " + e.what());
+  }
+  place(m, cfg.mesh.origin, cfg.mesh.rotation);
+  return m;
+}
+
+void add_box_sets(Mesh& mesh, const std::vector<NodeSetDef>& boxes) {
+  if (boxes.empty()) return;
+  Eigen::Vector3d lo = mesh.nodes.front(), hi = lo;
+  for (const Eigen::Vector3d& x : mesh.nodes) lo = lo.cwiseMin(x), hi = hi.cwiseMax(x);
+  const double tol = 1e-9 * (hi - lo).maxCoeff();
+  for (const NodeSetDef& d : boxes) {
+    if (mesh.node_sets.count(d.name)) throw InputError("'" + d.name + "' names a node set of the mesh already");
+    std::vector<int> nodes;
+    for (int n = 0; n < mesh.num_nodes(); ++n) {
+      const Eigen::Vector3d& x = mesh.nodes[n];
+      if (x[0] >= d.box[0] - tol && x[0] <= d.box[1] + tol && x[1] >= d.box[2] - tol && x[1] <= d.box[3] + tol)
+        nodes.push_back(n);
+    }
+    mesh.node_sets[d.name] = nodes;
+  }
+}
+
+void place(Mesh& mesh, const std::array<double, 2>& origin, double degrees) {
+  mesh.placement.origin = Eigen::Vector3d(origin[0], origin[1], 0.0);
+  mesh.placement.rotation.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(degrees * M_PI / 180.0).toRotationMatrix();
+  if (degrees != 0.0)
+    for (Eigen::Vector3d& x : mesh.nodes) x = mesh.placement(x);
+}
+
+}  // namespace rccm
