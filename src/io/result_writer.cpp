@@ -76,7 +76,7 @@ std::vector<std::string> curves_header(const Config& cfg) {
 double debonded_length(const Model& model, const Eigen::VectorXd& beta) {
   double length = 0;
   for (int i = 0; i < model.contact_nodes(); ++i)
-    if (beta[i] < 0.5) length += model.interface().pairs[i].measure;
+    if (beta[i] < 0.5) length += model.interface().pairs[i].length;
   return length;
 }
 
