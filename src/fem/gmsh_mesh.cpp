@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 
@@ -18,13 +19,16 @@ namespace rccm {
 namespace {
 
 /// gmsh's library state for one read: initialized without reading the user's gmshrc,
-/// silent, its messages collected; finalized on every way out.
+/// silent, its messages collected, no parameter left from an earlier read (gmsh keeps
+/// them across finalize); finalized on every way out. gmsh's state is global: one read at
+/// a time (a sweep builds its cases' models in parallel threads).
 class GmshSession {
  public:
-  GmshSession() {
+  GmshSession() : lock_(mutex()) {
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::logger::start();
+    gmsh::onelab::clear();
   }
   ~GmshSession() { gmsh::finalize(); }
   GmshSession(const GmshSession&) = delete;
@@ -36,6 +40,13 @@ class GmshSession {
     gmsh::logger::getLastError(e);
     return e.empty() ? fallback : e;
   }
+
+ private:
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+  std::lock_guard<std::mutex> lock_;
 };
 
 const char* group_kind(int dim) { return dim == 0 ? "point" : dim == 1 ? "curve" : "surface"; }

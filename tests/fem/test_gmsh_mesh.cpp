@@ -1,0 +1,165 @@
+// The gmsh mesh source (fem/gmsh_mesh): the same geometry from a .geo, MSH 2.2 and MSH 4.1
+// gives the same mesh; bodies, node sets, boundary facets and orientation follow from the
+// physical groups; a bad mesh file is refused naming the file and the physical group.
+#include "helpers.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/fem/gmsh_mesh.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+
+using namespace rccm;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string fixtures = std::string(RCCM_SOURCE_DIR) + "/tests/meshes/";
+
+Mesh read(const std::string& file, int refine = 0, std::map<std::string, double> parameters = {}) {
+  MeshParams p;
+  p.file = file;
+  p.refine = refine;
+  p.parameters = std::move(parameters);
+  return read_gmsh(p, "test.cfg:1: mesh.file");
+}
+
+/// A .geo file with `text` in a fresh directory.
+std::string geo(const std::string& name, const std::string& text) {
+  const fs::path dir = fs::temp_directory_path() / ("rccm_gmsh_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path) << text;
+  return path;
+}
+
+double area(const Mesh& m, const std::vector<int>& cell) {
+  double a2 = 0;
+  for (std::size_t k = 0; k < cell.size(); ++k) {
+    const Eigen::Vector3d &p = m.nodes[cell[k]], &q = m.nodes[cell[(k + 1) % cell.size()]];
+    a2 += p.x() * q.y() - q.x() * p.y();
+  }
+  return a2 / 2;
+}
+
+const char* square = R"(
+Point(1) = {0, 0, 0, 0.5}; Point(2) = {2, 0, 0, 0.5}; Point(3) = {2, 1, 0, 0.5}; Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+)";
+
+}  // namespace
+
+TEST_CASE("gmsh: a .geo and its MSH 2.2 and 4.1 files are the same mesh, with bodies and node sets from the groups",
+          "[gmsh]") {
+  const Mesh g = read(fixtures + "two_blocks.geo");
+  for (const char* file : {"two_blocks_v22.msh", "two_blocks_v41.msh"}) {
+    INFO(file);
+    const Mesh m = read(fixtures + file);
+    REQUIRE(m.num_nodes() == g.num_nodes());
+    REQUIRE(m.cells.size() == g.cells.size());
+    CHECK(m.body_names == g.body_names);
+    CHECK(m.node_set_names() == g.node_set_names());
+    for (int n = 0; n < m.num_nodes(); ++n) CHECK((m.nodes[n] - g.nodes[n]).norm() <= 1e-14);
+  }
+  // Two bodies of 10 x 2 in Q4 cells (10 x 2 each), counter-clockwise, covering 40 mm^2.
+  CHECK(g.body_names == std::vector<std::string>{"lower", "upper"});
+  REQUIRE(g.cells.size() == 40);
+  double total = 0, lower = 0;
+  for (std::size_t c = 0; c < g.cells.size(); ++c) {
+    CHECK(g.cells[c].size() == 4);
+    CHECK(area(g, g.cells[c]) > 0);
+    total += area(g, g.cells[c]);
+    if (g.cell_body[c] == 0) lower += area(g, g.cells[c]);
+  }
+  CHECK(total == Approx(40.0).epsilon(1e-12));
+  CHECK(lower == Approx(20.0).epsilon(1e-12));
+  // The blocks have their own nodes along y = 2: 2 x 33 nodes, and each block's boundary
+  // (the glued edges included) is boundary: 2 x (10 + 2) x 2 facets.
+  CHECK(g.num_nodes() == 66);
+  CHECK(g.facets.size() == 48);
+  // Node sets: a curve's nodes in order along it, a point's one node, a body's all nodes.
+  const std::vector<int>& top = g.node_set("lower_top");
+  REQUIRE(top.size() == 11);
+  for (std::size_t k = 1; k < top.size(); ++k)
+    CHECK(std::abs(g.nodes[top[k]].x() - g.nodes[top[k - 1]].x()) == Approx(1.0));
+  for (int n : top) CHECK(g.nodes[n].y() == Approx(2.0));
+  for (int n : g.node_set("upper_bottom")) CHECK(std::find(top.begin(), top.end(), n) == top.end());
+  REQUIRE(g.node_set("corner").size() == 1);
+  CHECK(g.nodes[g.node_set("corner")[0]].isApprox(Eigen::Vector3d(10, 4, 0)));
+  CHECK(g.node_set("upper").size() == 33);
+  // The boundary edges of a curve carry the outward normal of their body.
+  for (const BoundaryEdge& e : g.boundary_edges(top)) CHECK(e.outward.isApprox(Eigen::Vector3d(0, 1, 0)));
+  for (const BoundaryEdge& e : g.boundary_edges(g.node_set("upper_bottom")))
+    CHECK(e.outward.isApprox(Eigen::Vector3d(0, -1, 0)));
+}
+
+TEST_CASE("gmsh: parameters of a .geo, triangles, uniform refinement", "[gmsh]") {
+  const Mesh t = read(fixtures + "two_blocks.geo", 0, {{"quads", 0.0}, {"L", 20.0}});
+  CHECK(t.cells.size() == 80);  // 2 triangles per quad
+  for (const auto& c : t.cells) CHECK(c.size() == 3);
+  double total = 0;
+  for (const auto& c : t.cells) total += area(t, c);
+  CHECK(total == Approx(80.0).epsilon(1e-12));
+  const Mesh r = read(fixtures + "two_blocks.geo", 2);
+  CHECK(r.cells.size() == 40 * 16);
+  CHECK(r.node_set("lower_top").size() == 41);
+  double refined = 0;
+  for (const auto& c : r.cells) {
+    refined += area(r, c);
+    CHECK(area(r, c) > 0);
+  }
+  CHECK(refined == Approx(40.0).epsilon(1e-12));
+}
+
+TEST_CASE("gmsh: a clockwise surface is turned counter-clockwise", "[gmsh]") {
+  // The curve loop runs clockwise: gmsh orients the cells along it.
+  const Mesh m = read(geo("cw.geo", R"(
+Point(1) = {0, 0, 0, 0.5}; Point(2) = {2, 0, 0, 0.5}; Point(3) = {2, 1, 0, 0.5}; Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 4}; Line(2) = {4, 3}; Line(3) = {3, 2}; Line(4) = {2, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Surface("body") = {1};
+)"));
+  REQUIRE(!m.cells.empty());
+  double total = 0;
+  for (const auto& c : m.cells) {
+    CHECK(area(m, c) > 0);
+    total += area(m, c);
+  }
+  CHECK(total == Approx(2.0).epsilon(1e-12));
+}
+
+TEST_CASE("gmsh: a bad mesh file is refused, naming the file and the physical group", "[gmsh]") {
+  const auto refused = [](const std::string& file, const std::string& expect, std::map<std::string, double> parameters = {}) {
+    INFO(file);
+    CHECK_THROWS_WITH(read(file, 0, parameters), Catch::Contains("test.cfg:1: mesh.file: " + file) && Catch::Contains(expect));
+  };
+  refused(geo("no_bodies.geo", std::string(square)), "no Physical Surface");
+  refused(geo("unnamed.geo", std::string(square) + "Physical Surface(\"a\") = {1};\nPoint(9) = {5, 5, 0};\nPhysical Point(\"far\") = {9};\n"),
+          "Physical Point 'far' has a node on no cell");
+  refused(geo("quadratic.geo", std::string(square) + "Physical Surface(\"plate\") = {1};\nMesh.ElementOrder = 2;\nMesh 2;\n"),
+          "Physical Surface 'plate' has Triangle 6 cells: rccm reads linear triangles (T3) and quadrangles (Q4); mesh with "
+          "Mesh.ElementOrder = 1");
+  refused(geo("syntax.geo", "Point(1) = {0, 0, 0\n"), "syntax error");
+  refused(geo("clash.geo", std::string(square) + "Physical Surface(\"plate\") = {1};\nPhysical Curve(\"plate\") = {1};\n"),
+          "Physical Curve 'plate' has the name of another physical group");
+  refused(geo("left_out.geo", std::string(square) + R"(
+Point(5) = {3, 0, 0, 0.5}; Point(6) = {4, 0, 0, 0.5}; Point(7) = {4, 1, 0, 0.5}; Point(8) = {3, 1, 0, 0.5};
+Line(5) = {5, 6}; Line(6) = {6, 7}; Line(7) = {7, 8}; Line(8) = {8, 5};
+Curve Loop(2) = {5, 6, 7, 8}; Plane Surface(2) = {2};
+Physical Surface("plate") = {1};
+)"),
+          "surface 2 is meshed but in no Physical Surface");
+  refused(geo("tilted.geo", R"(
+Point(1) = {0, 0, 0, 0.5}; Point(2) = {2, 0, 1, 0.5}; Point(3) = {2, 1, 1, 0.5}; Point(4) = {0, 1, 0, 0.5};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Surface("plate") = {1};
+)"),
+          "a 2D mesh lies in the plane z = 0");
+  refused(fixtures + "two_blocks.geo", "mesh.parameters.Lx: the file defines no such parameter", {{"Lx", 3.0}});
+  refused(fixtures + "two_blocks_v41.msh", "mesh.parameters set the DefineConstant values of a .geo file", {{"L", 3.0}});
+  refused(fixtures + "missing.msh", "cannot read the file");
+  refused(fixtures + "../../config/b1.cfg", "a mesh file is a gmsh .msh or .geo file");
+}

@@ -1,0 +1,208 @@
+// Several bodies and interfaces between them (issue 16): a bonded interface transmits a
+// uniform stress exactly (a patch test across it, with the spring's opening p / Cn); two
+// blocks glued by a stiff interface are one block up to the penalty error, which shrinks as
+// C grows; several interfaces keep the symmetry of a symmetric problem and are invariant
+// under rotation; meshes that do not match, shared nodes and missing materials are refused.
+#include "helpers.hpp"
+#include "rccm/app/simulation.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/model/body_state.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <iomanip>
+#include <sstream>
+
+using namespace rccm;
+
+namespace {
+
+const std::string fixture = std::string(RCCM_SOURCE_DIR) + "/tests/meshes/two_blocks.geo";
+
+/// The two blocks of tests/meshes/two_blocks.geo (10 x 2 each, y in [0, 4]) with `rest`.
+Config two_blocks(const std::string& rest, const std::vector<std::string>& overrides = {}) {
+  return test::config_from_text("mesh = { file = \"" + fixture + "\"; };\n" + rest, overrides);
+}
+
+/// The bulk displacement at T of a run (contact-only: beta stays at beta0).
+Eigen::VectorXd displacement_at_T(const Config& cfg) {
+  const Model model = test::make_model(cfg);
+  Eigen::VectorXd u;
+  RunOptions o;
+  o.observer = [&](const AcceptedStep& a) { u = body_state(model, a.state).u; };
+  Simulation(cfg, o).run();
+  return u;
+}
+
+/// u of the node at x (mm) of a mesh.
+Eigen::Vector2d at(const Model& m, const Eigen::VectorXd& u, double x, double y) {
+  for (int n = 0; n < m.mesh().num_nodes(); ++n)
+    if ((m.mesh().nodes[n] - Eigen::Vector3d(x, y, 0)).norm() < 1e-9) return u.segment<2>(m.mesh().dof(n, 0));
+  FAIL("no node at (" << x << ", " << y << ")");
+  return {};
+}
+
+const std::string glue = R"(
+  boundary = "upper_bottom"; opposite = "lower_top"; Ct = 1e3; w = 1e9; alpha = 1.0; mu = 0.3;
+)";
+
+}  // namespace
+
+TEST_CASE("patch test across a body-body interface: uniform stress, opening p / Cn, each body its material",
+          "[bodies]") {
+  // Rollers on the bottom and the left, a pull p on the top: sigma_yy = p in both blocks,
+  // the glue opens by p / Cn, and the top rises by p h / E1 + p h / E2 + p / Cn (nu = 0: the
+  // blocks do not contract sideways, or the glue would shear between them).
+  const double p = 2.0, Cn = 400.0, h = 2.0;
+  for (const char* element : {"1", "0"}) {
+    std::ostringstream text;
+    text << R"(bodies = ( { name = "lower"; material = { E = 1000.0; nu = 0.0; }; },
+                          { name = "upper"; material = { E = 3000.0; nu = 0.0; }; } );
+interface = {)" << glue << "Cn = " << Cn << R"(; };
+loads = ( { node_set = "bottom"; type = "displacement"; component = "y"; value = 0.0; },
+          { node_set = "lower_left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "upper_left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "top"; type = "pressure"; value = )" << -p << R"(; } );
+time = { T = 1.0; };
+integrator = { method = "contact-only"; };
+)";
+    const Config cfg = two_blocks(text.str(), {std::string("mesh.parameters={quads=") + element + ";}"});
+    const Model model = test::make_model(cfg);
+    RunOptions o;
+    InterfaceState last;
+    o.observer = [&](const AcceptedStep& a) { last = a.state; };
+    Simulation(cfg, o).run();
+    INFO((element[0] == '1' ? "Q4" : "T3"));
+    const Layout& L = model.interface().layout;
+    for (int i = 0; i < model.contact_nodes(); ++i) {
+      CHECK(last.u[L.normal(i)] == Approx(p / Cn).epsilon(1e-9));            // the glue opens by p / Cn
+      CHECK(std::abs(last.u[L.offset(i)]) <= 1e-9 * p / Cn);                   // and does not slide
+      CHECK(model.interface().pairs[i].frame.n.isApprox(Eigen::Vector3d(0, 1, 0)));  // from lower (B) into upper (A)
+    }
+    const Eigen::VectorXd u = body_state(model, last).u;
+    const double rise = p * h / 1000.0 + p * h / 3000.0 + p / Cn;
+    for (double x : {0.0, 3.0, 10.0}) {
+      CHECK(at(model, u, x, 4.0)[1] == Approx(rise).epsilon(1e-9));
+      CHECK(at(model, u, x, 2.0)[1] == Approx(p * h / 1000.0).epsilon(1e-9));  // the lower block's top
+    }
+  }
+}
+
+TEST_CASE("two blocks glued by a stiff interface are one block, to a penalty error that shrinks as C grows",
+          "[bodies]") {
+  // The same 10 x 4 block as one body (the rectangle) and as two glued bodies, bonded to a
+  // rigid base and pulled up and sideways at the top.
+  const std::string common = R"(
+material = { E = 1000.0; nu = 0.3; };
+loads = ( { node_set = "top"; type = "traction"; component = "y"; value = 1.0; },
+          { node_set = "top"; type = "traction"; component = "x"; value = 0.5; } );
+time = { T = 1.0; };
+integrator = { method = "contact-only"; };
+)";
+  const std::string base = R"(boundary = "bottom"; normal = [0.0, 1.0]; Cn = 1e4; Ct = 1e4; w = 1e9; mu = 0.3;)";
+  const Config one_cfg = test::config_from_text(
+      "mesh = { size = [10.0, 4.0]; nx = 10; ny = 4; element = \"Q4\"; };\ninterface = {" + base + "};\n" + common);
+  const Model one = test::make_model(one_cfg);
+  const Eigen::VectorXd u_one = displacement_at_T(one_cfg);
+  std::vector<double> errors;
+  for (double C : {1e4, 1e5, 1e6, 1e7}) {
+    std::ostringstream glued;
+    glued << "interfaces = ( {" << base << "}, { boundary = \"upper_bottom\"; opposite = \"lower_top\"; Cn = " << C
+          << "; Ct = " << C << "; w = 1e9; mu = 0.3; } );\n";
+    const Config cfg = two_blocks(glued.str() + common);
+    const Model two = test::make_model(cfg);
+    const Eigen::VectorXd u_two = displacement_at_T(cfg);
+    double e = 0;
+    for (double x : {0.0, 5.0, 10.0}) e = std::max(e, (at(two, u_two, x, 4.0) - at(one, u_one, x, 4.0)).norm());
+    errors.push_back(e / at(one, u_one, 10.0, 4.0).norm());
+  }
+  INFO("relative errors " << errors[0] << " " << errors[1] << " " << errors[2] << " " << errors[3]);
+  for (std::size_t k = 1; k < errors.size(); ++k) CHECK(errors[k] == Approx(errors[k - 1] / 10).epsilon(0.1));  // O(1/C)
+  CHECK(errors.back() < 1e-4);
+}
+
+TEST_CASE("several interfaces: a symmetric problem stays symmetric, and a rotated one is the same", "[bodies]") {
+  // Two glued blocks on a rigid base (two interfaces), pulled off by a uniform suction on
+  // the top: symmetric about x = 5, and the same in every orientation (the base's normal
+  // turns with the mesh). The glue is weaker than the base: it debonds from its ends.
+  const auto run = [](double degrees) {
+    const double a = degrees * M_PI / 180;
+    std::ostringstream text;
+    text << std::setprecision(17) << std::showpoint << "material = { E = 1000.0; nu = 0.3; };\n"
+         << "interfaces = ( { boundary = \"bottom\"; normal = [" << -std::sin(a) << ", " << std::cos(a)
+         << "]; Cn = 1e4; Ct = 1e4; w = 1.0; alpha = 1.0; mu = 0.3; },\n"
+         << "  { boundary = \"upper_bottom\"; opposite = \"lower_top\"; Cn = 1e3; Ct = 1e3; w = 0.01; alpha = 1.0; "
+            "mu = 0.3; } );\n"
+         << "loads = ( { node_set = \"top\"; type = \"pressure\"; value = -5.0; } );\n"
+         << "time = { T = 1.0; };\n";
+    return Simulation(two_blocks(text.str(), {"mesh.rotation=" + std::to_string(degrees)})).run().snapshots.back();
+  };
+  const Snapshot s0 = run(0.0);
+  // The glue's pairs run from x = 0 to 10 (11 pairs after the base's 11): pair k mirrors 10 - k.
+  const Eigen::VectorXd beta = s0.beta.tail(11), u = s0.u.tail(22);
+  REQUIRE(beta.minCoeff() < 1 - 1e-3);  // the glue has begun to debond
+  REQUIRE(s0.beta.head(11).minCoeff() > beta.minCoeff());
+  for (int k = 0; k <= 10; ++k) {
+    INFO("glue pair " << k);
+    CHECK(beta[k] == Approx(beta[10 - k]).epsilon(1e-7));
+    CHECK(u[2 * k + 1] == Approx(u[2 * (10 - k) + 1]).epsilon(1e-7));        // u_n symmetric
+    CHECK(u[2 * k] == Approx(-u[2 * (10 - k)]).margin(1e-7 * u.cwiseAbs().maxCoeff()));  // u_t antisymmetric
+  }
+  for (double degrees : {30.0, 90.0, 217.0}) {
+    const Snapshot s = run(degrees);
+    INFO(degrees << " degrees");
+    CHECK((s.beta - s0.beta).cwiseAbs().maxCoeff() <= 1e-8);
+    CHECK((s.u - s0.u).cwiseAbs().maxCoeff() <= 1e-8 * s0.u.cwiseAbs().maxCoeff());
+    CHECK((s.Rbar - s0.Rbar).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, s0.Rbar.cwiseAbs().maxCoeff()));
+  }
+}
+
+TEST_CASE("a precrack: the interface's nodes in its node set start unbonded", "[bodies]") {
+  const Model m = test::make_model(two_blocks(R"(material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "upper_bottom"; opposite = "lower_top"; precrack = "upper_left"; Cn = 1e3; Ct = 1e3; w = 1.0; mu = 0.3; };
+loads = ( { node_set = "bottom"; type = "displacement"; component = "y"; value = 0.0; },
+          { node_set = "bottom"; type = "displacement"; component = "x"; value = 0.0; } );
+time = { T = 1.0; };
+)"));
+  const Eigen::VectorXd beta0 = m.initial_beta();
+  for (int i = 0; i < m.contact_nodes(); ++i)
+    CHECK(beta0[i] == (m.mesh().nodes[m.interface().pairs[i].node].x() == 0.0 ? 0.0 : 1.0));
+}
+
+TEST_CASE("bodies and body-body interfaces that cannot be are refused, naming the setting and the node", "[bodies]") {
+  const std::string rest = R"(
+loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = 0.1; },
+          { node_set = "bottom"; type = "displacement"; component = "y"; value = 0.0; },
+          { node_set = "bottom"; type = "displacement"; component = "x"; value = 0.0; } );
+time = { T = 1.0; };
+)";
+  const std::string material = "material = { E = 1000.0; nu = 0.3; };\n";
+  const auto refused = [](const Config& cfg, const std::string& expect) {
+    CHECK_THROWS_WITH(test::make_model(cfg), Catch::Contains(expect));
+  };
+  // A body without a material, a material for no body (with the nearest name).
+  refused(two_blocks("bodies = ( { name = \"lower\"; material = { E = 1.0; nu = 0.3; }; } );\ninterface = {" + glue +
+                     "Cn = 1e3; };" + rest),
+          "bodies: the mesh's body 'upper' has no material");
+  refused(two_blocks("bodies = ( { name = \"lower\"; material = { E = 1.0; nu = 0.3; }; }, { name = \"uper\"; material "
+                     "= { E = 1.0; nu = 0.3; }; } );\ninterface = {" + glue + "Cn = 1e3; };" + rest),
+          "the mesh's body 'upper' has no material");
+  // Meshes that do not match along the interface: the worst node is named.
+  refused(two_blocks(material + "interface = { boundary = \"upper_bottom\"; opposite = \"bottom\"; Cn = 1e3; Ct = 1e3; "
+                                "w = 1.0; mu = 0.3; };" + rest),
+          "the meshes of 'upper_bottom' and 'bottom' do not match: node (0, 2) of 'upper_bottom' is 2 mm from the "
+          "nearest node of 'bottom'");
+  refused(two_blocks(material + "interface = { boundary = \"upper_bottom\"; opposite = \"lower_left\"; Cn = 1e3; Ct = "
+                                "1e3; w = 1.0; mu = 0.3; };" + rest),
+          "do not match");
+  // One node on two interfaces.
+  refused(two_blocks(material + "interfaces = ( {" + glue + "Cn = 1e3; }, { boundary = \"upper_left\"; normal = [1.0, "
+                                "0.0]; Cn = 1.0; Ct = 1.0; w = 1.0; mu = 0.3; } );" + rest),
+          "is on interfaces.[0] already: a node belongs to one interface");
+  // A body-body interface with a gap setting, a tolerance on a rigid line.
+  CHECK_THROWS_WITH(two_blocks(material + "interface = {" + glue + "Cn = 1e3; g0 = 0.1; };" + rest),
+                    Catch::Contains("interface.g0: the gap of a circle or of two bodies comes from their geometry"));
+  CHECK_THROWS_WITH(two_blocks(material + "interface = { boundary = \"bottom\"; tolerance = 0.1; Cn = 1.0; Ct = 1.0; w "
+                                          "= 1.0; mu = 0.3; };" + rest),
+                    Catch::Contains("interface.tolerance: applies to an interface between two bodies"));
+}
