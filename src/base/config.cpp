@@ -86,6 +86,15 @@ std::string Config::where(const std::string& path) const {
   return file + ":" + std::to_string(it->second) + ": " + path;
 }
 
+const char* hypothesis_name(Hypothesis h) {
+  switch (h) {
+    case Hypothesis::PlaneStrain: return "plane_strain";
+    case Hypothesis::PlaneStress: return "plane_stress";
+    case Hypothesis::Axisymmetric: return "axisymmetric";
+  }
+  return "";
+}
+
 const char* method_name(Method m) {
   switch (m) {
     case Method::Arkode: return "arkode";

@@ -47,6 +47,9 @@ void Recorder::open(const Model& model) {
   result_.cells = static_cast<int>(model.mesh().cells.size());
   result_.dofs = model.mesh().num_dofs();
   result_.contact_nodes = model.contact_nodes();
+  result_.bodies = model.mesh().body_names;
+  result_.pairs_per_interface.assign(cfg_.interfaces.size(), 0);
+  for (const ContactPair& c : model.interface().pairs) ++result_.pairs_per_interface[c.law];
   if (options_.step_log)
     *options_.step_log << "# " << cfg_.file << ": " << result_.nodes << " nodes, " << result_.cells << " cells, "
                        << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)

@@ -148,11 +148,12 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
   std::ostream& out = file.stream();
   const Interface& I = model_.interface();
   const Layout& L = I.layout;
-  std::vector<std::string> header = {"node", "x [mm]", "y [mm]", "a [mm]", "t [s]", "beta"};
+  std::vector<std::string> header = {"node", "x [mm]", "y [mm]", model_.mesh().axisymmetric ? "a [mm2]" : "a [mm]", "t [s]", "beta"};
   for (const char* q : {"u", "Rbar", "Radh", "r", "p"})
     for (const std::string& c : component_labels(L.dim))
       header.push_back(std::string(q) + "_" + c + (q[0] == 'u' ? " [mm]" : q[0] == 'p' ? " [MPa]" : " [N]"));
   header.push_back("status");
+  header.push_back("interface");
   out << csv_line(header) << "\n";
   const Eigen::VectorXd Radh = b.r - s.Rbar;
   for (int i = 0; i < I.size(); ++i) {
@@ -164,6 +165,7 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
       for (double value : normal_first(L, *v, i)) row.push_back(csv_number(value));
     for (double value : normal_first(L, b.r, i)) row.push_back(csv_number(value / a));
     row.push_back(status_name(s.status[i]));
+    row.push_back(cfg_.interfaces[I.pairs[i].law].path);
     out << csv_line(row) << "\n";
   }
   file.commit();

@@ -36,8 +36,17 @@ std::string fmt(const char* f, double v) {
 void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r) {
   out << "rccm run report: " << cfg.file << "\n"
       << "mesh: " << r.nodes << " nodes, " << r.cells << " cells, " << r.dofs << " DOFs, " << r.contact_nodes
-      << " contact nodes\n"
-      << "integrator: " << method_name(cfg.integrator.method);
+      << " contact nodes\n";
+  out << "bodies (" << hypothesis_name(cfg.hypothesis()) << "):";
+  for (const std::string& b : r.bodies) out << " " << b;
+  out << "\ninterfaces:";
+  for (std::size_t k = 0; k < cfg.interfaces.size() && k < r.pairs_per_interface.size(); ++k) {
+    const InterfaceParams& p = cfg.interfaces[k];
+    out << (k ? ";" : "") << " " << p.path << " '" << p.boundary << "' against "
+        << (p.facing == Facing::Line ? "a rigid line" : p.facing == Facing::Circle ? "a rigid circle" : "'" + p.opposite + "'")
+        << " (" << r.pairs_per_interface[k] << " pairs)";
+  }
+  out << "\nintegrator: " << method_name(cfg.integrator.method);
   if (cfg.integrator.method == Method::Arkode)
     out << " (" << (cfg.integrator.scheme == ArkodeScheme::Dirk ? "dirk" : "erk") << ", rtol " << cfg.integrator.rtol
         << ", atol " << cfg.integrator.atol << ")";
@@ -126,6 +135,8 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"cells", r.cells},
                        {"dofs", r.dofs},
                        {"contact_nodes", r.contact_nodes},
+                       {"bodies", r.bodies},
+                       {"pairs_per_interface", r.pairs_per_interface},
                        {"steps", I.steps},
                        {"rejected_steps", I.rejected},
                        {"rhs_evaluations", I.rhs_evaluations},

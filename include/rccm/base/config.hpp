@@ -183,4 +183,7 @@ struct Config {
 /// The config name of a method ("arkode", "euler", "rate-independent", "contact-only").
 const char* method_name(Method m);
 
+/// The config name of a hypothesis ("plane_strain", "plane_stress", "axisymmetric").
+const char* hypothesis_name(Hypothesis h);
+
 }  // namespace rccm
