@@ -1,13 +1,86 @@
 #!/usr/bin/env bash
-# tools/plot --overlay draws the cases of a sweep into one non-empty PNG (skipped, exit 77,
-# when matplotlib is missing).
+# tools/plot --overlay draws the cases of a sweep into one figure (skipped, exit 77, when
+# matplotlib is missing):
+#  1. given as the user types it, SWEEP_DIR/* (summary.csv and jobs.txt among the arguments):
+#     exit 0, OUT_DIR/overlay.png (200 dpi, 7 in wide, not blank) and overlay.svg, a one-line
+#     note for each argument that is not a directory;
+#  2. given as the sweep prints it, SWEEP_DIR/*/, with an empty directory and a copy of a case
+#     whose report says STOPPED added: exit 0, both skipped with a note, OUT_DIR created;
+#  3. nothing but non-result arguments, or no run directory at all: exit non-zero with a
+#     message, no figure written.
+# Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
-/usr/bin/python3 -c "import matplotlib" 2>/dev/null || { echo "skipped: python3-matplotlib is not installed"; exit 77; }
-rm -f "$sweep/overlay.png"
-"$plot" --overlay "$sweep" "$sweep"/alpha=* || exit 1
-if [ -s "$sweep/overlay.png" ] && [ "$(head -c 4 "$sweep/overlay.png" | tail -c 3)" = "PNG" ]; then
-  echo "1 passed, 0 failed"
-else
-  echo "0 passed, 1 failed"; exit 1
+py=/usr/bin/python3
+$py -c "import matplotlib" 2>/dev/null || { echo "skipped: python3-matplotlib is not installed"; exit 77; }
+work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
+passed=0; failed=0
+pass() { passed=$((passed + 1)); }
+fail() { echo "FAIL $*"; failed=$((failed + 1)); }
+
+# OUT_DIR/overlay.png and .svg: a PNG at 200 dpi, 7 in wide, not blank; an SVG drawing.
+check_overlay() {
+  $py - "$1" <<'EOF'
+import os, struct, sys, xml.etree.ElementTree as ET
+import matplotlib.image
+png, svg = (os.path.join(sys.argv[1], f"overlay.{e}") for e in ("png", "svg"))
+try:
+    with open(png, "rb") as f:
+        data = f.read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n", "overlay.png is not a PNG"
+    width, height = struct.unpack(">II", data[16:24])
+    at = data.find(b"pHYs")
+    dpi = struct.unpack(">I", data[at + 4:at + 8])[0] * 0.0254 if at > 0 else 0
+    assert abs(dpi - 200) <= 1, f"overlay.png at {dpi:.0f} dpi, want 200"
+    assert 6.5 * 200 <= width <= 7 * 200 + 2 and height >= 3 * 200, f"overlay.png is {width} x {height} px"
+    assert matplotlib.image.imread(png)[..., :3].std() > 0.02, "overlay.png is blank"
+    root = ET.parse(svg).getroot()
+    assert root.tag.endswith("svg") and len(list(root.iter())) > 100, "overlay.svg is not a drawing"
+except (OSError, ET.ParseError, AssertionError) as e:
+    print(f"FAIL {e}")
+    sys.exit(1)
+EOF
+}
+
+cases=()
+for d in "$sweep"/*/; do [ -f "$d/curves.csv" ] && cases+=("${d%/}"); done
+[ "${#cases[@]}" -gt 0 ] || { echo "FAIL $sweep holds no case directory"; echo "0 passed, 1 failed"; exit 1; }
+
+# 1. SWEEP_DIR/*: the files of the sweep among the arguments.
+rm -f "$sweep/overlay.png" "$sweep/overlay.svg"
+all=("$sweep"/*)
+if "$plot" --overlay "$sweep" "${all[@]}" >"$work/out" 2>"$work/err"; then pass; else fail "--overlay DIR DIR/*: exit $?: $(cat "$work/err")"; fi
+check_overlay "$sweep" && pass || fail "overlay of $sweep/*"
+for f in "${all[@]}"; do
+  [ -d "$f" ] && continue
+  [ "$(grep -c -F "$f" "$work/err")" -eq 1 ] && pass || fail "no one-line note for $f: $(cat "$work/err")"
+done
+
+# 2. SWEEP_DIR/*/ plus an empty directory and a case that failed: both skipped with a note.
+mkdir -p "$work/empty"
+cp -r "${cases[0]}" "$work/stopped"
+sed -i 's/^status: .*/status: STOPPED before T = 10 s, at the last accepted step t = 1 s/' "$work/stopped/report.txt"
+if [ -f "$work/stopped/report.json" ]; then
+  $py -c 'import json, sys; p = sys.argv[1]; r = json.load(open(p)); r["stopped"] = "failed: a test"; r["complete"] = False; json.dump(r, open(p, "w"))' \
+    "$work/stopped/report.json"
 fi
+out=$work/new/out
+if "$plot" --overlay "$out" "$sweep"/*/ "$work/empty" "$work/stopped" >"$work/out" 2>"$work/err"; then pass
+else fail "--overlay with a failed case: exit $?: $(cat "$work/err")"; fi
+check_overlay "$out" && pass || fail "overlay into a new directory"
+grep -q -F "$work/empty" "$work/err" && pass || fail "no note for the empty directory: $(cat "$work/err")"
+grep -F "$work/stopped" "$work/err" | grep -q -i "stopped\|failed" && pass || fail "no note for the STOPPED case: $(cat "$work/err")"
+grep -q "of ${#cases[@]} runs" "$work/out" && pass || fail "not ${#cases[@]} runs drawn: $(cat "$work/out")"
+
+# 3. Nothing to draw: refused with a message, no figure.
+refused() {  # the arguments of tools/plot
+  if "$plot" "$@" >/dev/null 2>"$work/err"; then fail "$*: exit 0 with nothing to draw"
+  elif [ ! -s "$work/err" ]; then fail "$*: no message"
+  else pass; fi
+}
+refused --overlay "$work/none" "$sweep/summary.csv" "$work/empty" "$work/stopped"
+refused --overlay "$work/none"
+[ -e "$work/none/overlay.png" ] && fail "overlay.png written with nothing to draw" || pass
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
