@@ -15,14 +15,16 @@ namespace {
 
 std::string load_label(const Config& cfg, std::size_t k) {
   const LoadParams& p = cfg.loads[k];
-  return "L" + std::to_string(k) + " " + p.node_set + "." + "xyz"[p.component];
+  const std::string along = p.kind == LoadKind::Pressure ? "n" : std::string(1, "xyz"[p.component]);
+  return "L" + std::to_string(k) + " " + p.node_set + "." + along;
 }
 
 const char* load_unit(LoadKind kind) {
   switch (kind) {
     case LoadKind::Displacement: return "mm";
     case LoadKind::Force: return "N";
-    case LoadKind::Traction: return "MPa";
+    case LoadKind::Traction:
+    case LoadKind::Pressure: return "MPa";
   }
   return "";
 }

@@ -87,7 +87,8 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
 
   const EnergyTerms& e = r.energy;
   const bool rate_independent = cfg.integrator.method == Method::RateIndependent;
-  out << "\nEnergy balance at T (docs/MODEL.md s3), N mm per mm of thickness\n"
+  out << "\nEnergy balance at T (docs/MODEL.md s3), N mm "
+      << (cfg.hypothesis() == Hypothesis::Axisymmetric ? "(the whole body of revolution)" : "per mm of thickness") << "\n"
       << "  external work                  " << fmt("%.8e", e.external_work) << "\n"
       << "  strain energy                  " << fmt("%.8e", e.strain_energy) << "\n"
       << "  interface free energy change   " << fmt("%.8e", e.free_energy_change) << "\n"
@@ -128,6 +129,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                      {"sweeps_max", s.sweeps_max},
                      {"cpu_seconds", s.cpu_seconds}});
   const json report = {{"config", cfg.file},
+                       {"hypothesis", hypothesis_name(cfg.hypothesis())},
                        {"rccm_version", RCCM_VERSION_STRING},
                        {"integrator", method_name(cfg.integrator.method)},
                        {"alpha", alpha},
