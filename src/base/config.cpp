@@ -64,6 +64,7 @@ std::string Config::fingerprint() const {
     h.list("loads.t", l.amplitude.t).list("loads.v", l.amplitude.v);
   }
   h("time.T", time.T)("time.steps", time.steps);
+  h("solver.method", double(solver.method))("solver.over_relaxation", solver.over_relaxation);
   h("solver.tolerance", solver.tolerance)("solver.max_iterations", solver.max_iterations);
   h("solver.local_iterations", solver.local_iterations)("solver.form", double(solver.form));
   h("solver.rho", double(solver.rho))("solver.relaxation", solver.relaxation)("solver.active_set", solver.active_set);

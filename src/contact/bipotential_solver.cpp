@@ -343,8 +343,4 @@ std::string BipotentialSolver::failure_advice() const {
   return m.str();
 }
 
-std::unique_ptr<ContactSolver> make_contact_solver(const SolverParams& params) {
-  return std::make_unique<BipotentialSolver>(params);
-}
-
 }  // namespace rccm

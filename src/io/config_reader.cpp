@@ -590,8 +590,12 @@ SolverParams read_solver(const Reader& r, const Setting& root) {
   SolverParams S;
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
-  r.only(*s, {"tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation", "active_set",
-              "active_set_max_nodes"});
+  r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation",
+              "active_set", "active_set_max_nodes"});
+  S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
+  S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
+  if (s->exists("over_relaxation"))
+    r.check(S.over_relaxation > 0 && S.over_relaxation < 2, (*s)["over_relaxation"], "must be in (0, 2)", S.over_relaxation);
   S.tolerance = r.number(*s, "tolerance", S.tolerance);
   if (s->exists("tolerance")) r.check(S.tolerance > 0 && S.tolerance < 1, (*s)["tolerance"], "must be in (0, 1)", S.tolerance);
   S.max_iterations = r.integer(*s, "max_iterations", S.max_iterations);

@@ -103,11 +103,14 @@ struct TimeParams {
   int steps = 210;  // steps of the fixed-step integrators (the paper's 210 increments)
 };
 
+enum class ContactMethod { Bipotential, Rccm, Newton };
 enum class SweepForm { GaussSeidel, Jacobi };
 enum class RhoRule { Eigen, Paper };
 
-/// Numerics of the bipotential contact solve (docs/MODEL.md s5).
+/// Numerics of the contact solve at fixed beta (docs/MODEL.md s5, docs/SOLVERS.md).
 struct SolverParams {
+  ContactMethod method = ContactMethod::Bipotential;  // the paper's, the classical RCCM one, or semi-smooth Newton
+  double over_relaxation = 1.5;  // rccm: the projected Gauss-Seidel's relaxation factor, in (0, 2)
   double tolerance = 1e-10;      // relative change of Rbar and scaled natural-map residual
   int max_iterations = 2000;     // sweeps per contact solve
   int local_iterations = 100;    // predictor-corrector steps per node and sweep (Gauss-Seidel)

@@ -24,7 +24,10 @@ class ContactSolver {
   virtual std::string failure_advice() const = 0;
 };
 
-/// The contact solver the config asks for (solver section).
+/// The contact solver the config asks for (solver.method and its settings).
 std::unique_ptr<ContactSolver> make_contact_solver(const SolverParams& params);
+
+/// The config name of a contact method ("bipotential", "rccm", "newton").
+const char* contact_method_name(ContactMethod m);
 
 }  // namespace rccm
