@@ -1,6 +1,8 @@
 #include "rccm/app/compare.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/contact/contact_solver.hpp"
+#include "rccm/io/run_report.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -9,24 +11,94 @@
 
 namespace rccm {
 
-std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std::string>& integrators,
-                                        int euler_steps) {
-  std::vector<CompareCase> cases;
-  for (const std::string& name : integrators) {
-    CompareCase c{name, cfg, {}};
-    const Method methods[] = {Method::Arkode, Method::Euler, Method::RateIndependent, Method::ContactOnly};
-    const Method* m = std::find_if(std::begin(methods), std::end(methods),
-                                   [&](Method x) { return name == method_name(x); });
-    if (m == std::end(methods))
-      throw InputError("--integrators: unknown integrator '" + name + "' (arkode, euler, rate-independent, contact-only)");
-    c.config.integrator.method = *m;
-    if (name == "euler" && euler_steps > 0) c.config.time.steps = euler_steps;
-    const bool viscous = *m == Method::Arkode || *m == Method::Euler;
-    for (const InterfaceParams& p : cfg.interfaces)
-      if (viscous && !(p.alpha > 0))
-        throw InputError(cfg.where(p.path + ".alpha") + ": must be > 0 for integrator '" + name + "'");
-    cases.push_back(std::move(c));
+namespace {
+
+Method integrator_of(const std::string& name) {
+  const Method methods[] = {Method::Arkode, Method::Euler, Method::RateIndependent, Method::ContactOnly};
+  const Method* m =
+      std::find_if(std::begin(methods), std::end(methods), [&](Method x) { return name == method_name(x); });
+  if (m == std::end(methods))
+    throw InputError("--integrators: unknown integrator '" + name + "' (arkode, euler, rate-independent, contact-only)");
+  return *m;
+}
+
+ContactMethod solver_of(const std::string& name) {
+  for (ContactMethod m : {ContactMethod::Bipotential, ContactMethod::Rccm, ContactMethod::Newton})
+    if (name == contact_method_name(m)) return m;
+  throw InputError("--solvers: unknown contact solver '" + name + "' (bipotential, rccm, newton)");
+}
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+/// The paper's ratios of total CPU, RCCM (GYPTIS90) over bipotential (SYMEF): Tables 1 and 2.
+const char* paper_ratios = "the paper: 161.7 s / 66.8 s = 2.4 on B1, 497.4 s / 136.5 s = 3.6 on B2";
+
+/// Per integrator, the cases of each solver in the paper's layout: rows per solver, columns
+/// the steps 1, 10, 40, 60, 100, 150, 200.
+void print_tables(std::ostream& out, const std::vector<CompareCase>& cases) {
+  std::vector<Method> integrators;
+  for (const CompareCase& c : cases)
+    if (std::find(integrators.begin(), integrators.end(), c.config.integrator.method) == integrators.end())
+      integrators.push_back(c.config.integrator.method);
+  for (Method m : integrators) {
+    std::vector<const CompareCase*> group;
+    for (const CompareCase& c : cases)
+      if (c.config.integrator.method == m) group.push_back(&c);
+    out << "\n" << method_name(m);
+    if (m != Method::Arkode) out << ", " << group.front()->config.time.steps << " fixed steps";
+    out << " (the paper's Tables 1-2 layout)\n";
+    const std::vector<const StepRecord*> columns = paper_table_columns(group.front()->result);
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%-34s", "step");
+    out << buf;
+    for (const StepRecord* s : columns) out << fmt("%10.0f", s->step);
+    out << "   total CPU [s]\n";
+    for (const CompareCase* c : group) {
+      const std::vector<const StepRecord*> own = paper_table_columns(c->result);
+      const std::string solver = contact_method_name(c->config.solver.method);
+      const auto row = [&](const std::string& label, auto value, const std::string& total) {
+        std::snprintf(buf, sizeof buf, "%-34s", label.c_str());
+        out << buf;
+        for (const StepRecord* s : own) out << value(*s);
+        out << total << "\n";
+      };
+      row(solver + ": beta iterations", [](const StepRecord& s) { return fmt("%10.0f", s.contact_solves); }, "");
+      row(solver + ": contact iterations", [](const StepRecord& s) { return fmt("%10.1f", s.sweeps_mean); }, "");
+      row(solver + ": CPU [s]", [](const StepRecord& s) { return fmt("%10.2e", s.cpu_seconds); },
+          fmt("%16.3f", c->result.wall_seconds));
+    }
+    for (const CompareCase* c : group)
+      if (c != group.front())
+        out << "total CPU " << contact_method_name(c->config.solver.method) << " / "
+            << contact_method_name(group.front()->config.solver.method) << ": "
+            << fmt("%.2f", c->result.wall_seconds / std::max(group.front()->result.wall_seconds, 1e-9)) << " ("
+            << paper_ratios << ")\n";
   }
+}
+
+}  // namespace
+
+std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std::string>& integrators,
+                                        const std::vector<std::string>& solvers, int euler_steps) {
+  std::vector<CompareCase> cases;
+  const std::vector<std::string> solver_names =
+      solvers.empty() ? std::vector<std::string>{contact_method_name(cfg.solver.method)} : solvers;
+  for (const std::string& name : integrators)
+    for (const std::string& solver : solver_names) {
+      CompareCase c{solvers.size() > 1 ? name + "/" + solver : name, cfg, {}};
+      c.config.integrator.method = integrator_of(name);
+      c.config.solver.method = solver_of(solver);
+      if (name == "euler" && euler_steps > 0) c.config.time.steps = euler_steps;
+      const bool viscous = c.config.integrator.method == Method::Arkode || c.config.integrator.method == Method::Euler;
+      for (const InterfaceParams& p : cfg.interfaces)
+        if (viscous && !(p.alpha > 0))
+          throw InputError(cfg.where(p.path + ".alpha") + ": must be > 0 for integrator '" + name + "'");
+      cases.push_back(std::move(c));
+    }
   for (CompareCase& c : cases) c.result = Simulation(c.config).run();
   return cases;
 }
@@ -40,33 +112,30 @@ void print_comparison(std::ostream& out, const std::vector<CompareCase>& cases) 
     for (const CompareCase& c : cases) out << cell(c);
     out << "\n";
   };
-  auto fmt = [&](const char* f, double v) {
-    std::snprintf(buf, sizeof buf, f, v);
-    return std::string(buf);
-  };
   row("", [&](const CompareCase& c) {
-    std::snprintf(buf, sizeof buf, "%18s", c.label.c_str());
+    std::snprintf(buf, sizeof buf, "%20s", c.label.c_str());
     return std::string(buf);
   });
   const std::vector<Snapshot>& ref = cases.front().result.snapshots;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     for (std::size_t w = 0; w < watched.size(); ++w)
       row("beta at " + cases.front().config.output.watch[w].name + ", t = " + fmt("%g", ref[k].t),
-          [&](const CompareCase& c) { return fmt("%18.6e", c.result.snapshots[k].beta[watched[w]]); });
+          [&](const CompareCase& c) { return fmt("%20.6e", c.result.snapshots[k].beta[watched[w]]); });
     row("max |beta - " + cases.front().label + "|, t = " + fmt("%g", ref[k].t), [&](const CompareCase& c) {
-      return fmt("%18.3e", (c.result.snapshots[k].beta - ref[k].beta).cwiseAbs().maxCoeff());
+      return fmt("%20.3e", (c.result.snapshots[k].beta - ref[k].beta).cwiseAbs().maxCoeff());
     });
   }
-  row("steps", [&](const CompareCase& c) { return fmt("%18.0f", c.result.integrator.steps); });
-  row("rejected steps", [&](const CompareCase& c) { return fmt("%18.0f", c.result.integrator.rejected); });
-  row("RHS evaluations", [&](const CompareCase& c) { return fmt("%18.0f", c.result.integrator.rhs_evaluations); });
-  row("contact solves (with commits)", [&](const CompareCase& c) { return fmt("%18.0f", c.result.solves.contact_solves); });
-  row("Newton / fixed-point iterations", [&](const CompareCase& c) { return fmt("%18.0f", c.result.integrator.newton_iterations); });
-  row("bipotential sweeps per solve", [&](const CompareCase& c) {
-    return fmt("%18.2f", double(c.result.solves.sweeps) / std::max(1L, c.result.solves.contact_solves));
+  row("steps", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.steps); });
+  row("rejected steps", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.rejected); });
+  row("RHS evaluations", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.rhs_evaluations); });
+  row("contact solves (with commits)", [&](const CompareCase& c) { return fmt("%20.0f", c.result.solves.contact_solves); });
+  row("Newton / fixed-point iterations", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.newton_iterations); });
+  row("contact iterations per solve", [&](const CompareCase& c) {
+    return fmt("%20.2f", double(c.result.solves.sweeps) / std::max(1L, c.result.solves.contact_solves));
   });
-  row("bipotential sweeps, max", [&](const CompareCase& c) { return fmt("%18.0f", c.result.solves.max_sweeps); });
-  row("wall time [s]", [&](const CompareCase& c) { return fmt("%18.3f", c.result.wall_seconds); });
+  row("contact iterations, max", [&](const CompareCase& c) { return fmt("%20.0f", c.result.solves.max_sweeps); });
+  row("wall time [s]", [&](const CompareCase& c) { return fmt("%20.3f", c.result.wall_seconds); });
+  print_tables(out, cases);
   for (const CompareCase& c : cases)
     for (const std::string& w : c.result.warnings) out << c.label << ": warning: " << w << "\n";
 }

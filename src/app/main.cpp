@@ -64,12 +64,13 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "rccm " RCCM_VERSION_STRING);
   app.require_subcommand(1);
   std::string config_file, output_dir;
-  std::vector<std::string> overrides, integrators{"arkode", "euler"};
+  std::vector<std::string> overrides, integrators{"arkode", "euler"}, solvers;
   bool quiet = false;
   int euler_steps = 0;
 
   CLI::App* run = app.add_subcommand("run", "run the problem of a config file");
-  CLI::App* compare = app.add_subcommand("compare", "run one problem with several integrators, side by side");
+  CLI::App* compare =
+      app.add_subcommand("compare", "run one problem with several integrators and contact solvers, side by side");
   CLI::App* sweep_app = app.add_subcommand(
       "sweep", "run a config for every value of listed settings (--set interface.alpha=0,0.1,1,10), in parallel");
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -104,6 +105,8 @@ int main(int argc, char** argv) {
       "--restart", restart_dir, "go on from the checkpoint of an interrupted or failed run of the same config in DIR");
   restart->excludes("--force");
   compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, contact-only")
+      ->delimiter(',');
+  compare->add_option("--solvers", solvers, "comma-separated: bipotential, rccm, newton (default: solver.method)")
       ->delimiter(',');
   compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
       ->check(CLI::PositiveNumber);
@@ -165,7 +168,7 @@ int main(int argc, char** argv) {
                   cfg.output.directory.c_str());
     } else {
       std::cout << "# " << config_file << "\n";
-      rccm::print_comparison(std::cout, rccm::run_comparison(cfg, integrators, euler_steps));
+      rccm::print_comparison(std::cout, rccm::run_comparison(cfg, integrators, solvers, euler_steps));
     }
     return 0;
   } catch (const rccm::InputError& e) {

@@ -13,8 +13,15 @@ namespace rccm {
 
 namespace {
 
-/// The accepted steps nearest to the paper's table columns.
-std::vector<const StepRecord*> table_columns(const RunResult& r) {
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+}  // namespace
+
+std::vector<const StepRecord*> paper_table_columns(const RunResult& r) {
   std::vector<const StepRecord*> cols;
   if (r.steps.size() < 2) return cols;
   for (int want : {1, 10, 40, 60, 100, 150, 200}) {
@@ -24,14 +31,6 @@ std::vector<const StepRecord*> table_columns(const RunResult& r) {
   }
   return cols;
 }
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-}  // namespace
 
 void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r) {
   out << "rccm run report: " << cfg.file << "\n"
@@ -60,7 +59,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
         << r.stopped << "\n\n";
 
   out << "Work per step (the paper's Table 1 layout)\n";
-  const auto cols = table_columns(r);
+  const auto cols = paper_table_columns(r);
   auto row = [&](const char* label, auto value) {
     char buf[40];
     std::snprintf(buf, sizeof buf, "%-30s", label);
@@ -71,7 +70,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   row("step", [](const StepRecord& s) { return fmt("%10.0f", s.step); });
   row("t [s]", [](const StepRecord& s) { return fmt("%10.4f", s.t); });
   row("contact solves (beta iter.)", [](const StepRecord& s) { return fmt("%10.0f", s.contact_solves); });
-  row("bipotential sweeps per solve", [](const StepRecord& s) { return fmt("%10.2f", s.sweeps_mean); });
+  row("contact iterations per solve", [](const StepRecord& s) { return fmt("%10.2f", s.sweeps_mean); });
   row("CPU [s]", [](const StepRecord& s) { return fmt("%10.2e", s.cpu_seconds); });
 
   const IntegratorStats& I = r.integrator;
@@ -80,7 +79,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "  RHS evaluations         " << I.rhs_evaluations << "\n"
       << "  Newton / fixed-point it " << I.newton_iterations << "\n"
       << "  contact solves          " << r.solves.contact_solves << "\n"
-      << "  bipotential sweeps      " << fmt("%.2f", double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves))
+      << "  contact iterations      " << fmt("%.2f", double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves))
       << " per solve, max " << r.solves.max_sweeps << "\n"
       << "  wall time               " << fmt("%.3f", r.wall_seconds) << " s (setup " << fmt("%.4f", r.setup_seconds)
       << " s)\n";

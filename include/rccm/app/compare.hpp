@@ -1,4 +1,5 @@
-// `rccm compare`: the same problem run with several integrators, side by side.
+// `rccm compare`: the same problem run with several integrators and contact solvers, side
+// by side, with the paper's Tables 1-2 layout per case.
 #pragma once
 
 #include "rccm/base/config.hpp"
@@ -12,18 +13,21 @@
 namespace rccm {
 
 struct CompareCase {
-  std::string label;  // integrator name as given on the command line
+  std::string label;  // "integrator" or "integrator/solver" as given on the command line
   Config config;
   RunResult result;
 };
 
-/// Runs `cfg` once per integrator name ("arkode", "euler", "rate-independent", "contact-only"),
-/// Euler with `euler_steps` fixed steps (0: time.steps). Throws InputError for an unknown name.
+/// Runs `cfg` once per integrator name ("arkode", "euler", "rate-independent", "contact-only")
+/// and contact solver name ("bipotential", "rccm", "newton"; empty: the config's), Euler with
+/// `euler_steps` fixed steps (0: time.steps). Throws InputError for an unknown name.
 std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std::string>& integrators,
-                                        int euler_steps);
+                                        const std::vector<std::string>& solvers, int euler_steps);
 
 /// Prints beta at the watched points at the output times, the largest difference of beta
-/// along the interface against the first case, and the work of each case.
+/// along the interface against the first case, the work of each case, and per integrator
+/// the paper's Tables 1-2 (beta and contact iterations and CPU per step, total CPU) of each
+/// solver with the ratio of total CPU to the first solver's.
 void print_comparison(std::ostream& out, const std::vector<CompareCase>& cases);
 
 }  // namespace rccm

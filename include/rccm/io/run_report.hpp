@@ -8,8 +8,12 @@
 
 #include <iosfwd>
 #include <string>
+#include <vector>
 
 namespace rccm {
+
+/// The accepted steps nearest to the paper's table columns (steps 1, 10, 40, 60, 100, 150, 200).
+std::vector<const StepRecord*> paper_table_columns(const RunResult& r);
 
 void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r);
 void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r);
