@@ -29,13 +29,7 @@ class PairBuilder {
     nodes_ = node_set(p_.boundary, ".boundary");
     const std::vector<double> a = mesh_.tributary_measures(nodes_), length = mesh_.tributary_lengths(nodes_);
     outward_ = mesh_.outward_normals(nodes_);
-    std::vector<char> precrack(mesh_.num_nodes(), 0);
-    if (!p_.precrack.empty()) {
-      bool any = false;
-      for (int n : node_set(p_.precrack, ".precrack")) precrack[n] = 1;
-      for (int n : nodes_) any = any || precrack[n];
-      if (!any) fail(".precrack", "node set '" + p_.precrack + "' has no node of '" + p_.boundary + "'");
-    }
+    const std::vector<char> precrack = precracked();
     if (p_.facing == Facing::Body) match_opposite();
     std::vector<ContactPair> pairs;
     for (std::size_t k = 0; k < nodes_.size(); ++k) {
@@ -68,6 +62,29 @@ class PairBuilder {
     }
     if (set->empty()) fail(setting, "node set '" + name + "' has no nodes");
     return *set;
+  }
+
+  /// Per mesh node, whether it starts unbonded: every interface edge at it lies in the
+  /// precrack node set (so a precrack curve's end at the crack tip, whose other edge is
+  /// bonded, stays bonded).
+  std::vector<char> precracked() const {
+    std::vector<char> out(mesh_.num_nodes(), 0);
+    if (p_.precrack.empty()) return out;
+    std::vector<char> in(mesh_.num_nodes(), 0);
+    for (int n : node_set(p_.precrack, ".precrack")) in[n] = 1;
+    std::vector<int> edges(mesh_.num_nodes(), 0), cracked(mesh_.num_nodes(), 0);
+    for (const BoundaryEdge& e : mesh_.boundary_edges(nodes_))
+      for (int n : {e.a, e.b}) {
+        ++edges[n];
+        cracked[n] += in[e.a] && in[e.b];
+      }
+    bool any = false;
+    for (int n : nodes_) {
+      out[n] = edges[n] > 0 && cracked[n] == edges[n];
+      any = any || out[n];
+    }
+    if (!any) fail(".precrack", "node set '" + p_.precrack + "' holds no edge of '" + p_.boundary + "'");
+    return out;
   }
 
   /// Value k of a config list of one value or one per contact node.

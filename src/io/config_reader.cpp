@@ -312,6 +312,9 @@ void apply_override(libconfig::Config& cfg, const std::string& item) {
   if (!setting_name(parts.back()))
     throw fail("'" + parts.back() + "' is not a setting name (letters, digits and '_', from a letter)");
   if (!parent->isGroup()) throw fail("a list element is set by its index, e.g. loads.[0].value");
+  // A load is a ramp (value) or a table: setting one replaces the other.
+  for (const auto& [set, other] : {std::pair<const char*, const char*>{"value", "table"}, {"table", "value"}})
+    if (parts.back() == set && parent->exists(other)) parent->remove(other);
   copy_value(value.lookup("v"), *parent, parts.back());
 }
 

@@ -77,7 +77,7 @@ void Recorder::start(BetaOde& ode) {
     return;
   }
   const InterfaceState initial = InterfaceState::initial(*model_);
-  energy_ = std::make_unique<EnergyBalance>(*model_, initial, body_state(*model_, initial));
+  energy_ = std::make_unique<EnergyBalance>(*model_, initial, body_state(*model_, initial), rate_independent());
   ode.resume(resume_->state, resume_->step, resume_->progress.solves, resume_->excursion);
   body_ = body_state(*model_, resume_->state);
   energy_->resume(resume_->state, body_, resume_->energy);
@@ -99,7 +99,7 @@ void Recorder::attach(BetaIntegrator& integrator) {
 void Recorder::step(const AcceptedStep& a) {
   body_ = body_state(*model_, a.state);
   if (!energy_) {
-    energy_ = std::make_unique<EnergyBalance>(*model_, a.state, body_);
+    energy_ = std::make_unique<EnergyBalance>(*model_, a.state, body_, rate_independent());
   } else if (a.midpoint) {
     const BodyState mid_body = body_state(*model_, *a.midpoint);
     energy_->add(a.state, body_, a.midpoint, &mid_body);

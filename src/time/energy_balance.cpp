@@ -29,8 +29,13 @@ double EnergyTerms::relative_error() const {
   return std::abs(imbalance()) / scale;
 }
 
-EnergyBalance::EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body)
-    : model_(model), psi0_(free_energy(initial)), previous_(initial), previous_body_(initial_body) {
+EnergyBalance::EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body,
+                             bool rate_independent)
+    : model_(model),
+      rate_independent_(rate_independent),
+      psi0_(free_energy(initial)),
+      previous_(initial),
+      previous_body_(initial_body) {
   terms_.strain_energy = 0.5 * initial_body.u.dot(model.stiffness() * initial_body.u);
 }
 
@@ -67,8 +72,9 @@ void EnergyBalance::add(const InterfaceState& s, const BodyState& b, const Inter
     const double G0 = law.thermodynamic_force(o.beta[i], L.local(o.u, i)),
                  G1 = law.thermodynamic_force(s.beta[i], L.local(s.u, i)),
                  Gm = mid ? law.thermodynamic_force(mid->beta[i], L.local(mid->u, i)) : 0.0;
-    terms_.damage_dissipation += I.pairs[i].measure * stieltjes(G0, mid ? &Gm : nullptr, G1, o.beta[i],
-                                                                mid ? &mid->beta[i] : nullptr, s.beta[i]);
+    if (!rate_independent_)
+      terms_.damage_dissipation += I.pairs[i].measure * stieltjes(G0, mid ? &Gm : nullptr, G1, o.beta[i],
+                                                                  mid ? &mid->beta[i] : nullptr, s.beta[i]);
     for (const bool normal : {false, true}) {
       const Eigen::Index first = normal ? L.normal(i) : L.offset(i), n = normal ? 1 : L.tangential_size();
       const Eigen::VectorXd Rm = mid ? part(mid->Rbar, first, n) : Eigen::VectorXd(),

@@ -63,7 +63,7 @@ std::unique_ptr<BetaIntegrator> make_integrator(BetaSystem& ode, const Config& c
   switch (p.method) {
     case Method::Arkode: return std::make_unique<ArkodeIntegrator>(ode, p, cfg.time.T);
     case Method::Euler: return std::make_unique<EulerIntegrator>(ode, grid);
-    case Method::RateIndependent: return std::make_unique<RateIndependentIntegrator>(ode, grid, p);
+    case Method::RateIndependent: return std::make_unique<RateIndependentIntegrator>(ode, grid, p, cfg.solver.tolerance);
     case Method::ContactOnly: return std::make_unique<ContactOnlyIntegrator>(ode, grid);
   }
   throw InternalError("unknown integrator method");

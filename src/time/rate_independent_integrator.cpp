@@ -20,7 +20,8 @@ void RateIndependentIntegrator::step(double t_new) {
       std::ostringstream m;
       m << "t = " << t_new << " s, step " << ode_.steps() + 1 << ": the rate-independent fixed point did not "
         << "converge in " << max_iterations_ << " iterations (change of beta " << change << " at contact node "
-        << node << "); raise integrator.fixed_point_iterations or take smaller steps (time.steps)";
+        << node << "); raise integrator.fixed_point_iterations or loosen integrator.fixed_point_tolerance ("
+        << tolerance_ << ")";
       throw SolveError(m.str());
     }
   }

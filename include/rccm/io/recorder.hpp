@@ -67,6 +67,7 @@ class Recorder {
   std::string stop(const std::string& why);
 
  private:
+  bool rate_independent() const { return cfg_.integrator.method == Method::RateIndependent; }
   RunResult close(const std::string& stopped);
   void note_crawl(const AcceptedStep& a);
   void save_checkpoint();

@@ -32,7 +32,11 @@ struct EnergyTerms {
 
 class EnergyBalance {
  public:
-  EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body);
+  /// `rate_independent`: beta moves only on the threshold G = 0, where the law dissipates
+  /// nothing; what a jump of beta releases is the balance's remainder (released in
+  /// snap-through), not a damage dissipation.
+  EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body,
+                bool rate_independent = false);
 
   /// Adds the step from the previous accepted state to this one (s, b), through the state
   /// halfway (mid, mid_body) when given.
@@ -45,6 +49,7 @@ class EnergyBalance {
  private:
   double free_energy(const InterfaceState& s) const;
   const Model& model_;
+  bool rate_independent_;
   double psi0_;
   InterfaceState previous_;
   BodyState previous_body_;

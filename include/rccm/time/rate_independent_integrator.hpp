@@ -1,18 +1,23 @@
 // The rate-independent limit alpha -> 0 (docs/MODEL.md s3):
 //   beta_{n+1} = min(beta_n, w / (Cn u_n^2 + Ct u_t^2)) with u from the contact solve at
 //   (t_{n+1}, beta_{n+1}), made consistent by a fixed point in each step. Starting from
-//   beta_n the iterates decrease monotonically to the largest consistent beta.
+//   beta_n the iterates decrease monotonically to the largest consistent beta. The fixed
+//   point cannot resolve beta below the contact solve's own accuracy: its tolerance is at
+//   least 100 times the solver's.
 #pragma once
 
 #include "rccm/time/integrator.hpp"
+
+#include <algorithm>
 
 namespace rccm {
 
 class RateIndependentIntegrator final : public FixedStepIntegrator {
  public:
-  RateIndependentIntegrator(BetaSystem& ode, std::vector<double> grid, const IntegratorParams& p)
+  RateIndependentIntegrator(BetaSystem& ode, std::vector<double> grid, const IntegratorParams& p,
+                            double solver_tolerance)
       : FixedStepIntegrator(ode, std::move(grid)),
-        tolerance_(p.fixed_point_tolerance),
+        tolerance_(std::max(p.fixed_point_tolerance, 100 * solver_tolerance)),
         max_iterations_(p.fixed_point_iterations) {}
 
  private:
