@@ -41,11 +41,17 @@ TEST_CASE("Siconos test problems: where Siconos NSGS converges, so does the bipo
   }
 }
 
-TEST_CASE("B1 and B2 condensed problems: Siconos and the bipotential solver give the same reactions", "[peer]") {
-  for (const char* file : {"b1.cfg", "b2.cfg"}) {
-    const Config cfg = load_config(std::string(RCCM_SOURCE_DIR) + "/config/" + file, {"integrator.method=euler"});
+TEST_CASE("B1, B2 and two-body (ENF) condensed problems: Siconos and the bipotential solver give the same reactions",
+          "[peer]") {
+  // enf.cfg: two glued arms with a frictional precrack (a body-body interface), every 12th
+  // step of a coarse run through the peak and the crack's run.
+  for (const char* file : {"b1.cfg", "b2.cfg", "enf.cfg"}) {
+    const bool enf = std::string(file) == "enf.cfg";
+    const Config cfg = load_config(std::string(RCCM_SOURCE_DIR) + "/config/" + file,
+                                   enf ? std::vector<std::string>{"mesh.parameters.dx=1.0", "time.steps=60"}
+                                       : std::vector<std::string>{"integrator.method=euler"});
     const Model model = test::make_model(cfg);
-    const std::vector<peer::StepProblem> problems = peer::step_problems(model, cfg, 40);
+    const std::vector<peer::StepProblem> problems = peer::step_problems(model, cfg, enf ? 12 : 40);
     CHECK(problems.size() >= 4);
     for (const peer::StepProblem& sp : problems) {
       const peer::PeerSolution n = peer::solve(sp.plain, "nsgs", 1e-14, 100000);
