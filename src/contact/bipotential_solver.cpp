@@ -1,6 +1,7 @@
 #include "rccm/contact/bipotential_solver.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/contact/pair_block.hpp"
 #include "rccm/contact/solver_tuning.hpp"
 
 #include <Eigen/Dense>
@@ -13,79 +14,6 @@
 namespace rccm {
 
 namespace {
-
-/// Pair i's dim components of a stacked interface vector (layout.hpp), as a fixed-size view.
-template <int dim, class V>
-auto pair(V& v, int i) {
-  return v.template segment<dim>(Eigen::Index(dim) * i);
-}
-
-/// The largest eigenvalue of a symmetric 2 x 2 (closed form) or 3 x 3 matrix.
-double largest_eigenvalue(const Eigen::Matrix2d& S) {
-  const double half_trace = 0.5 * (S(0, 0) + S(1, 1)), half_gap = 0.5 * (S(0, 0) - S(1, 1));
-  return half_trace + std::hypot(half_gap, S(0, 1));
-}
-double largest_eigenvalue(const Eigen::Matrix3d& S) {
-  return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S, Eigen::EigenvaluesOnly).eigenvalues()[2];
-}
-
-/// What pair i needs for its local solve, fixed during one contact solve. With
-/// c = M (u_i - W_ii y_i) (the other pairs' contribution), the pair's displacement as a
-/// function of its own Rbar is u_i = Wb Rbar + c, where M = (I - W_ii E_i)^-1 and
-/// Wb = M W_ii: the spring is folded in (docs/MODEL.md s4).
-template <int dim>
-struct PairBlock {
-  using Vec = Eigen::Matrix<double, dim, 1>;
-  using Mat = Eigen::Matrix<double, dim, dim>;
-  Mat Wii;                  // diagonal block of W0
-  Vec E;                    // D1 - D(beta)
-  Mat M, Wb;                // (I - W_ii E)^-1 and the effective flexibility
-  Vec g0_shift;             // (-u_ref,t, g0): u_i + g0_shift = (du_t, g), the slip and the gap
-  double mubar;             // mu (1 - beta)
-  double rho;               // predictor step, N/mm
-  bool prescribed;          // every component prescribed: u_i does not depend on Rbar_i
-
-  /// The predictor of paper eq. 35 at local displacement u_i: tau = R - rho s(u_i).
-  Vec predictor(const Vec& R, const Vec& u_i) const { return R - rho * modified_velocity(u_i + g0_shift, mubar); }
-};
-
-template <int dim>
-std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) {
-  using Mat = typename PairBlock<dim>::Mat;
-  std::vector<PairBlock<dim>> blocks;
-  blocks.reserve(pb.size());
-  const double scale = pb.W0->diagonal_scale();
-  for (int i = 0; i < pb.size(); ++i) {
-    PairBlock<dim> b;  // default-initialized: every member is set below
-    b.Wii = pb.W0->block(pb.layout.offset(i), dim);
-    b.E = pair<dim>(pb.D1, i) - pair<dim>(pb.Dbeta, i);
-    b.g0_shift = -pair<dim>(pb.u_ref, i);
-    b.g0_shift[dim - 1] = pb.g0[i];
-    b.mubar = pb.mubar[i];
-    const Mat A = Mat::Identity() - b.Wii * b.E.asDiagonal();
-    if (std::abs(A.determinant()) < tuning::singular_pair) {
-      std::ostringstream m;
-      m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
-        << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
-      throw SolveError(m.str());
-    }
-    b.M = A.inverse();
-    b.Wb = b.M * b.Wii;
-    b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
-    const double lmax = largest_eigenvalue(b.Wb);
-    b.prescribed = lmax <= tuning::prescribed_pair * scale;
-    if (b.prescribed) {
-      b.rho = 0;
-    } else if (rule == RhoRule::Eigen) {
-      b.rho = 1.0 / lmax;
-    } else {  // paper eq. 34 (on the flexibility with the springs)
-      const double dmin = b.Wb.diagonal().minCoeff();
-      b.rho = 1.0 / (dmin > 0 ? dmin : lmax);
-    }
-    blocks.push_back(b);
-  }
-  return blocks;
-}
 
 /// The rows of each pair in the exact step, from its status and the direction of its friction.
 template <int dim>
@@ -129,34 +57,20 @@ class BipotentialSolver::Iteration {
     refresh();
     s.Rbar = s.y - E_.cwiseProduct(s.u);
     R_projected_ = Eigen::VectorXd::Zero(m);
-    R_branch_ = Eigen::VectorXd::Zero(m);
-    branch_.assign(pb.size(), Status::Separated);
+    check_.branch.assign(pb.size(), Status::Separated);
+    check_.projected = Eigen::VectorXd::Zero(m);
   }
 
   ContactSolution s;
 
   /// A predictor-corrector pass at the current (Rbar, u) that changes nothing: each pair's
-  /// branch and projection, and the largest natural-map residual |Rbar - proj(Rbar - rho s)|
-  /// scaled by the pair's force level. Returns the force scale of the problem.
+  /// branch and projection, and the largest scaled natural-map residual (pair_block.hpp).
+  /// Returns the force scale of the problem.
   double verify() {
-    const Eigen::VectorXd Radh = -pb_.Dbeta.cwiseProduct(s.u);
-    const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
-    const double floor = noise_floor() / params_.tolerance;
-    s.residual = 0;
-    s.worst_node = -1;
-    for (int i = 0; i < pb_.size(); ++i) {
-      const PairBlock<dim>& b = blocks_[i];
-      // A pair with every component prescribed takes no part: its Rbar is 0 by convention.
-      const Vec R = b.prescribed ? Vec::Zero() : Vec(pair<dim>(s.Rbar, i));
-      const Vec tau = b.predictor(R, pair<dim>(s.u, i));                              // eq. 35
-      branch_[i] = b.prescribed ? Status::Separated : cone_branch(tau, b.mubar);
-      pair<dim>(R_branch_, i) = b.prescribed ? R : project_cone(tau, b.mubar);  // eqs. 36-38
-      const double level =
-          std::max({R.norm() + pair<dim>(Radh, i).norm(), tuning::residual_level_floor * F, floor});
-      const double r = (R - pair<dim>(R_branch_, i)).norm() / level;
-      if (r > s.residual || s.worst_node < 0) s.residual = r, s.worst_node = i;
-    }
-    return std::max(F, floor);
+    check_ = verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, noise_floor() / params_.tolerance);
+    s.residual = check_.residual;
+    s.worst_node = check_.worst_node;
+    return check_.force_scale;
   }
 
   /// One sweep of the predictor-corrector over every pair (paper eqs. 35-38): Gauss-Seidel
@@ -217,13 +131,13 @@ class BipotentialSolver::Iteration {
   bool verified() {
     if (s.residual > params_.tolerance) return false;
     s.converged = true;
-    s.status = branch_;
-    s.Rbar = R_branch_;
+    s.status = check_.branch;
+    s.Rbar = check_.projected;
     return true;
   }
 
   /// The pattern of the last verifying pass, and of the last sweep.
-  Pattern verified_pattern() const { return pattern_of<dim>(branch_, blocks_, R_branch_); }
+  Pattern verified_pattern() const { return pattern_of<dim>(check_.branch, blocks_, check_.projected); }
   Pattern swept_pattern() const { return pattern_of<dim>(s.status, blocks_, s.Rbar); }
 
   /// An exact step of the active-set system for `pattern`; false if its matrix is singular.
@@ -254,8 +168,7 @@ class BipotentialSolver::Iteration {
   const std::vector<PairBlock<dim>> blocks_;
   const Eigen::VectorXd E_;
   Eigen::VectorXd R_projected_;  // the projections of the last sweep: the reported Rbar
-  std::vector<Status> branch_;   // of the last verifying pass
-  Eigen::VectorXd R_branch_;
+  Verification check_;           // the last verifying pass
 };
 
 ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,

@@ -1,2 +1,309 @@
-// PLACEHOLDER (issue 17): replaced by its implementation.
 #include "rccm/contact/newton_solver.hpp"
+
+#include "rccm/base/errors.hpp"
+#include "rccm/contact/pair_block.hpp"
+#include "rccm/contact/solver_tuning.hpp"
+
+#include <Eigen/Dense>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+namespace rccm {
+
+namespace {
+
+// Globalization (docs/solvers/newton.md s5).
+/// Armijo's sufficient decrease: accept the step t when theta(y + t dy) <= (1 - 2 c t) theta(y).
+constexpr double armijo = 1e-4;
+/// Halvings of the step before the Newton direction counts as failed (t >= 2^-8).
+constexpr int max_halvings = 8;
+/// Projected Gauss-Seidel sweeps when the Newton direction fails, before Newton resumes.
+constexpr int fallback_sweeps = 2;
+/// A Jacobian whose reciprocal condition number (LU estimate) is below this is singular.
+constexpr double singular_jacobian = 1e-14;
+
+/// The Alart-Curnier augmentation of pair i, scale-invariant (docs/solvers/newton.md s4):
+/// rho_n = 1 / Wb_nn and rho_t = 1 / lambda_max of Wb's tangential block (1 / lambda_max(Wb)
+/// where a diagonal entry is not positive); 0 for a prescribed pair.
+struct Augmentation {
+  double rho_n = 0, rho_t = 0;
+};
+
+template <int dim>
+std::vector<Augmentation> augmentations(const std::vector<PairBlock<dim>>& blocks) {
+  std::vector<Augmentation> aug(blocks.size());
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    const PairBlock<dim>& b = blocks[i];
+    if (b.prescribed) continue;
+    const double lmax = largest_eigenvalue(b.Wb), w_n = b.Wb(dim - 1, dim - 1);
+    const double w_t =
+        largest_eigenvalue(Eigen::Matrix<double, dim - 1, dim - 1>(b.Wb.template topLeftCorner<dim - 1, dim - 1>()));
+    aug[i].rho_n = 1.0 / (w_n > 0 ? w_n : lmax);
+    aug[i].rho_t = 1.0 / (w_t > 0 ? w_t : lmax);
+  }
+  return aug;
+}
+
+/// The Alart-Curnier function of one pair (docs/solvers/newton.md s2) at its force R and its
+/// slip and gap v = (du_t, g), with the augmented multipliers
+///   sigma_n = R_n - rho_n g,  sigma_t = R_t - rho_t du_t,
+///   F_n = R_n - max(0, sigma_n),  F_t = R_t - proj(sigma_t, disk of radius mubar max(0, sigma_n)),
+/// and the case it is in: separated (sigma_n <= 0), stick (|sigma_t| <= mubar sigma_n) or slide.
+template <int dim>
+struct AlartCurnier {
+  using Vec = typename PairBlock<dim>::Vec;
+  using Mat = typename PairBlock<dim>::Mat;
+  using Tangent = Eigen::Matrix<double, dim - 1, 1>;
+  static constexpr int n = dim - 1;
+
+  AlartCurnier(const PairBlock<dim>& b, const Augmentation& a, const Vec& R, const Vec& v) : block(b), aug(a) {
+    sigma_n = R[n] - a.rho_n * v[n];
+    if (b.prescribed || sigma_n <= 0) {  // separated (a prescribed pair as well): F = R
+      status = Status::Separated;
+      F = R;
+      return;
+    }
+    F[n] = a.rho_n * v[n];  // R_n - sigma_n, without the cancellation
+    const Tangent sigma_t = R.template head<n>() - a.rho_t * v.template head<n>();
+    radius = b.mubar * sigma_n;
+    norm_t = sigma_t.norm();
+    if (norm_t <= radius) {  // F_t = R_t - sigma_t
+      status = Status::Stick;
+      F.template head<n>() = a.rho_t * v.template head<n>();
+    } else {  // F_t = R_t - mubar sigma_n d
+      status = Status::Slide;
+      d = sigma_t / norm_t;
+      F.template head<n>() = R.template head<n>() - radius * d;
+    }
+  }
+
+  /// An element of the generalized Jacobian (docs/solvers/newton.md s3): A = dF/dR, B = dF/dv.
+  void jacobian(Mat& A, Mat& B) const {
+    using Tangential = Eigen::Matrix<double, n, n>;
+    const PairBlock<dim>& b = block;
+    const Augmentation& a = aug;
+    A.setZero(), B.setZero();
+    switch (status) {
+      case Status::Separated: A.setIdentity(); return;
+      case Status::Stick: B.diagonal().setConstant(a.rho_t); break;
+      case Status::Slide: {
+        // The derivative of d = sigma_t / |sigma_t| is (I - d d^T) / |sigma_t| (zero in 2D).
+        const Tangential curvature = (radius / norm_t) * (Tangential::Identity() - d * d.transpose());
+        A.template topLeftCorner<n, n>() = Tangential::Identity() - curvature;
+        A.template topRightCorner<n, 1>() = -b.mubar * d;
+        B.template topLeftCorner<n, n>() = a.rho_t * curvature;
+        B.template topRightCorner<n, 1>() = b.mubar * a.rho_n * d;
+      }
+    }
+    B(n, n) = a.rho_n;
+  }
+
+  const PairBlock<dim>& block;
+  const Augmentation& aug;
+  Vec F;
+  Status status;
+  double sigma_n, radius = 0, norm_t = 0;
+  Tangent d = Tangent::Zero();  // the slide direction
+};
+
+}  // namespace
+
+/// The state of one solve: y, u = W0 y + q0 and Rbar = y - E u, the pairs' blocks, and the
+/// verifying pass's branches and projections.
+template <int dim>
+class NewtonSolver::Iteration {
+  using Vec = typename PairBlock<dim>::Vec;
+  using Mat = typename PairBlock<dim>::Mat;
+
+ public:
+  Iteration(const ContactProblem& pb, const SolverParams& params, const Eigen::VectorXd& Rbar_start,
+            const Eigen::VectorXd& u_start)
+      : pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), aug_(augmentations(blocks_)), E_(pb.D1 - pb.Dbeta) {
+    const Eigen::Index m = pb.W0->size();
+    // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
+    s.y = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
+    if (u_start.size() == m) s.y += E_.cwiseProduct(u_start);
+    s.u.resize(m);
+    refresh();
+    s.status.assign(pb.size(), Status::Separated);
+  }
+
+  ContactSolution s;
+
+  /// The verifying pass at (Rbar, u) (pair_block.hpp, docs/MODEL.md s5). True when its
+  /// residual is within the tolerance: then its branches and projections are the result.
+  bool verified() {
+    // Rbar = y - E u cancels where beta -> 0: its attainable accuracy is about eps |y|.
+    const double noise = tuning::cancellation_floor * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff();
+    const Verification check = verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, noise / params_.tolerance);
+    s.residual = check.residual;
+    s.worst_node = check.worst_node;
+    s.status = check.branch;
+    if (s.residual > params_.tolerance) return false;
+    s.converged = true;
+    s.Rbar = check.projected;  // in the cone by construction (y - E u differs by round-off)
+    return true;
+  }
+
+  /// One Newton step on F(y) = 0 (docs/solvers/newton.md s3-s5): the direction, then an
+  /// Armijo backtracking line search on theta = 1/2 |F|^2. False when the direction fails
+  /// (singular Jacobian, no decrease, or no move).
+  bool newton_step(ActiveSetSystem<2>& active_set) {
+    const Eigen::VectorXd F = function(s.y, s.u, &cases_);
+    const double theta = 0.5 * F.squaredNorm();
+    Eigen::VectorXd dy, du;
+    if (!direction(F, active_set, dy, du)) return false;
+    ++s.exact_solves;
+    if (!dy.allFinite() || dy.norm() <= std::numeric_limits<double>::epsilon() * s.y.norm()) return false;
+    double t = 1;
+    for (int k = 0; k <= max_halvings; ++k, t *= 0.5) {
+      const Eigen::VectorXd y = s.y + t * dy, u = s.u + t * du;
+      if (0.5 * function(y, u).squaredNorm() <= (1 - 2 * armijo * t) * theta) {
+        s.y = y;
+        s.u = u;
+        s.Rbar = y - E_.cwiseProduct(u);
+        return true;
+      }
+    }
+    return false;
+  }
+
+  /// A projected Gauss-Seidel sweep: pair by pair, the bipotential solver's local
+  /// predictor-corrector (paper eqs. 35-38) with the other pairs held, u updated at once.
+  void sweep() {
+    const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
+    for (int i = 0; i < pb_.size(); ++i) {
+      const PairBlock<dim>& b = blocks_[i];
+      if (b.prescribed) continue;
+      const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
+      Vec R = pair<dim>(s.Rbar, i), ui = b.Wb * R + c;
+      for (int k = 0; k < params_.local_iterations; ++k) {
+        const Vec R_next = project_cone(b.predictor(R, ui), b.mubar);
+        const double change = (R_next - R).norm();
+        R = R_next;
+        ui = b.Wb * R + c;
+        if (change <= tuning::local_tolerance_fraction * params_.tolerance * std::max(R.norm(), F_old)) break;
+      }
+      const Vec yi = R + b.E.cwiseProduct(ui);
+      pb_.W0->add_response(pb_.layout.offset(i), yi - pair<dim>(s.y, i), s.u);
+      pair<dim>(s.y, i) = yi;
+      pair<dim>(s.Rbar, i) = R;
+    }
+    refresh();
+  }
+
+ private:
+  /// u = W0 y + q0 and Rbar = y - E u.
+  void refresh() {
+    pb_.W0->multiply(s.y, s.u);
+    s.u += pb_.q0;
+    s.Rbar = s.y - E_.cwiseProduct(s.u);
+  }
+
+  /// F at (y, u) (u = W0 y + q0), pair by pair, and each pair's case.
+  Eigen::VectorXd function(const Eigen::VectorXd& y, const Eigen::VectorXd& u,
+                           std::vector<AlartCurnier<dim>>* cases = nullptr) const {
+    Eigen::VectorXd F(y.size());
+    if (cases) cases->clear();
+    for (int i = 0; i < pb_.size(); ++i) {
+      const PairBlock<dim>& b = blocks_[i];
+      const Vec ui = pair<dim>(u, i);
+      const AlartCurnier<dim> local(b, aug_[i], Vec(pair<dim>(y, i)) - b.E.cwiseProduct(ui), ui + b.shift);
+      pair<dim>(F, i) = local.F;
+      if (cases) cases->push_back(local);
+    }
+    return F;
+  }
+
+  /// The Newton direction: J dy = -F with J = A + (B - A E) W0 (A, B block diagonal: the pairs'
+  /// dF/dR and dF/dv; R = y - E u, u = W0 y + q0), and du = W0 dy. False if J is singular.
+  bool direction(const Eigen::VectorXd& F, ActiveSetSystem<2>& active_set, Eigen::VectorXd& dy, Eigen::VectorXd& du) {
+    if constexpr (dim == 2) {
+      // F is affine on the cases' piece: y + dy is the zero of its affine extension, which is
+      // the solution of the active-set system of those cases (its rows are F's rows combined:
+      // docs/solvers/newton.md s3). That system keeps its factorization across solves.
+      (void)F;
+      Pattern pattern(pb_.size());
+      for (int i = 0; i < pb_.size(); ++i) {
+        pattern[i].status = cases_[i].status;
+        if (cases_[i].status == Status::Slide) pattern[i].direction[0] = cases_[i].d[0];
+      }
+      Eigen::VectorXd y = s.y, u = s.u;
+      if (!active_set.solve(pb_, pattern, y, u)) return false;
+      dy = y - s.y;
+      du = u - s.u;
+    } else {
+      (void)active_set;
+      const Eigen::Index m = s.y.size();
+      const Eigen::MatrixXd& W = *pb_.W0->dense();
+      Eigen::MatrixXd J(m, m);
+      Mat A, B;
+      for (int i = 0; i < pb_.size(); ++i) {
+        const Eigen::Index first = pb_.layout.offset(i);
+        cases_[i].jacobian(A, B);
+        // Pair i's rows A_i (e_i - E_i W0_i) + B_i W0_i, W0_i its rows (= columns: W0 is symmetric).
+        const Mat C = B - A * blocks_[i].E.asDiagonal();
+        J.template middleRows<dim>(first).noalias() = C * W.template middleCols<dim>(first).transpose();
+        J.template block<dim, dim>(first, first) += A;
+      }
+      const Eigen::PartialPivLU<Eigen::MatrixXd> lu(J);
+      if (!(lu.rcond() >= singular_jacobian)) return false;
+      dy = -lu.solve(F);
+      du.resize(m);
+      pb_.W0->multiply(dy, du);
+    }
+    return true;
+  }
+
+  const ContactProblem& pb_;
+  const SolverParams& params_;
+  const std::vector<PairBlock<dim>> blocks_;
+  const std::vector<Augmentation> aug_;
+  const Eigen::VectorXd E_;
+  std::vector<AlartCurnier<dim>> cases_;  // at the current y
+};
+
+ContactSolution NewtonSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                    const Eigen::VectorXd& u_start) {
+  const Eigen::Index m = pb.W0->size();
+  RCCM_VERIFY(pb.q0.size() == m && pb.layout.offset(pb.size()) == m, "contact problem sizes");
+  RCCM_VERIFY(pb.W0->dense() != nullptr, "the Newton contact solver needs a dense W0");
+  // No load (q0 = 0, e.g. t = 0): the solution is exactly zero (as for the bipotential solver,
+  // whose scaled residual has no scale there).
+  if (pb.q0.isZero(0.0)) {
+    ContactSolution zero;
+    zero.Rbar = zero.y = zero.u = Eigen::VectorXd::Zero(m);
+    zero.status.assign(pb.size(), Status::Separated);
+    zero.converged = true;
+    return zero;
+  }
+  RCCM_VERIFY(pb.layout.dim == 2 || pb.layout.dim == 3, "contact pairs of 2 or 3 components");
+  return pb.layout.dim == 2 ? solve_in<2>(pb, Rbar_start, u_start) : solve_in<3>(pb, Rbar_start, u_start);
+}
+
+template <int dim>
+ContactSolution NewtonSolver::solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                       const Eigen::VectorXd& u_start) {
+  Iteration<dim> it(pb, params_, Rbar_start, u_start);
+  ContactSolution& s = it.s;
+  while (!it.verified() && s.iterations < params_.max_iterations) {
+    ++s.iterations;
+    if (it.newton_step(active_set_)) continue;
+    // The Newton direction failed: a few projected sweeps, then Newton from there.
+    for (int k = 0; k < fallback_sweeps && s.iterations < params_.max_iterations; ++k, ++s.iterations) it.sweep();
+  }
+  return s;
+}
+
+std::string NewtonSolver::failure_advice() const {
+  std::ostringstream m;
+  m << "raise solver.max_iterations, loosen solver.tolerance (" << params_.tolerance
+    << "), take smaller steps or use solver.method = \"bipotential\"";
+  return m.str();
+}
+
+}  // namespace rccm

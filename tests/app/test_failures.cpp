@@ -101,7 +101,7 @@ TEST_CASE("ARKODE cuts its step when a stage's contact solve fails, and says so 
   fs::remove_all(dir);
 }
 
-TEST_CASE("a beta that is not finite stops the run where it appears; one out of [0, previous] is clamped and reported",
+TEST_CASE("a beta that is not finite stops the run where it appears: one out of [0, previous] is clamped and reported",
           "[failure]") {
   const Config cfg = test::config_from_text(R"(
 mesh = { size = [4.0, 1.0]; nx = 4; ny = 1; };

@@ -364,7 +364,7 @@ TEST_CASE("DCB elastic stiffness under uniform refinement (mesh.refine 0, 1, 2),
 }
 
 TEST_CASE("DCB in the rate-independent limit: the force follows the LEFM propagation branch G = w, better "
-          "as the cohesive zone is resolved; w per unit of crack advance",
+          "as the cohesive zone is resolved, releasing w per unit of crack advance",
           "[fracture]") {
   const auto start = std::chrono::steady_clock::now();
   const Laminate m;
@@ -413,7 +413,7 @@ TEST_CASE("DCB in the rate-independent limit under refinement: dx = 0.5, 0.25, 0
   CHECK(std::abs(levels.back().err.max) < 0.015);
 }
 
-TEST_CASE("viscous DCB: the peak force rises with alpha above the rate-independent one; only alpha / T matters",
+TEST_CASE("viscous DCB: the peak force rises with alpha above the rate-independent one: only alpha / T matters",
           "[fracture]") {
   const auto start = std::chrono::steady_clock::now();
   // A shorter beam (L = 60, cells 0.5 mm from 25 to 50 mm): the crack grows by 3 mm at most
@@ -523,7 +523,7 @@ EnfRun enf_run(double mu, double dx = 0.25, int ny = 6, double q = 1.2) {
 
 }  // namespace
 
-TEST_CASE("ENF: the critical load against beam theory; friction on the precrack dissipates energy at the "
+TEST_CASE("ENF: the critical load against beam theory: friction on the precrack dissipates energy at the "
           "supported end and raises the critical load as the friction couple says",
           "[fracture]") {
   const auto start = std::chrono::steady_clock::now();

@@ -2,6 +2,8 @@
 // Gauss-Seidel and Jacobi forms agree, the spring folded into the local solve.
 #include "rccm/contact/bipotential_solver.hpp"
 
+#include "random_problem.hpp"
+
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
@@ -10,40 +12,11 @@
 #include <random>
 
 using namespace rccm;
+using rccm::testing::Family;
+using rccm::testing::RandomProblem;
 
 namespace {
 
-/// A random SPD flexibility of n 2D pairs, diagonally dominant like an FE Delassus matrix,
-/// and a condensed problem on it (with springs D1 folded into W0, and D(beta) <= D1).
-struct RandomProblem {
-  RandomProblem(int n, std::mt19937& gen, bool springs) {
-    std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
-    const Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(2 * n, 2 * n, [&]() { return U(gen); });
-    Eigen::MatrixXd Wd = B * B.transpose() / (2.0 * n) + Eigen::MatrixXd::Identity(2 * n, 2 * n);
-    pb.q0 = Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return U(gen); });
-    pb.mubar = Eigen::VectorXd::NullaryExpr(n, [&]() { return 0.4 * P(gen); });
-    pb.g0 = Eigen::VectorXd::Zero(n);
-    pb.u_ref = Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return 0.1 * U(gen); });
-    pb.D1 = Eigen::VectorXd::Zero(2 * n);
-    pb.Dbeta = Eigen::VectorXd::Zero(2 * n);
-    if (springs) {
-      // W0 = (W^-1 + D1)^-1 holds springs D1; the problem carries D(beta) <= D1.
-      pb.D1 = Eigen::VectorXd::NullaryExpr(2 * n, [&]() { return 2.0 * P(gen); });
-      const Eigen::VectorXd beta = Eigen::VectorXd::NullaryExpr(n, [&]() { return P(gen); });
-      for (int i = 0; i < n; ++i) pb.Dbeta.segment<2>(2 * i) = beta[i] * beta[i] * pb.D1.segment<2>(2 * i);
-      const Eigen::MatrixXd Winv = Wd.inverse();
-      Wd = (Winv + Eigen::MatrixXd(pb.D1.asDiagonal())).inverse();
-      Wd = 0.5 * (Wd + Wd.transpose()).eval();
-    }
-    W = DenseDelassus(Wd);
-    pb.W0 = &W;
-  }
-  RandomProblem(const RandomProblem&) = delete;
-  const Eigen::MatrixXd& matrix() const { return *W.dense(); }
-
-  DenseDelassus W{Eigen::MatrixXd()};
-  ContactProblem pb;
-};
 
 SolverParams params(SweepForm form, bool active_set) {
   SolverParams p;
@@ -60,7 +33,7 @@ TEST_CASE("random problems: Signorini and Coulomb hold, both forms agree", "[sol
   std::mt19937 gen(7);
   for (bool springs : {false, true})
     for (int trial = 0; trial < 40; ++trial) {
-      const RandomProblem rp(1 + trial % 8, gen, springs);
+      const RandomProblem rp(1 + trial % 8, 2, Family::Mild, springs, gen);
       const ContactSolution gs = BipotentialSolver(params(SweepForm::GaussSeidel, true)).solve(rp.pb, {}, {});
       const ContactSolution gs_plain = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(rp.pb, {}, {});
       const ContactSolution ja = BipotentialSolver(params(SweepForm::Jacobi, false)).solve(rp.pb, {}, {});
@@ -92,7 +65,7 @@ TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain
   std::mt19937 gen(11);
   std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 12; ++trial) {
-    RandomProblem rp(4 + trial, gen, true);
+    RandomProblem rp(4 + trial, 2, Family::Mild, true, gen);
     BipotentialSolver warm(params(SweepForm::GaussSeidel, true));
     ContactSolution previous = warm.solve(rp.pb, {}, {});
     REQUIRE(previous.converged);
@@ -158,7 +131,7 @@ TEST_CASE("a solver reused along a sequence of problems (cached active-set facto
   // pattern repeats or changes at a few nodes (low-rank update) or many (new factorization).
   std::mt19937 gen(11);
   std::uniform_real_distribution<double> U(-1, 1);
-  RandomProblem rp(12, gen, true);
+  RandomProblem rp(12, 2, Family::Mild, true, gen);
   BipotentialSolver reused(params(SweepForm::GaussSeidel, true));
   ContactSolution previous;
   for (int k = 0; k < 60; ++k) {

@@ -62,7 +62,7 @@ integrator = { method = "contact-only"; };
   }
 }
 
-TEST_CASE("a pressure on a curved boundary acts along its inward normal; its resultant is p times the chord",
+TEST_CASE("a pressure on a curved boundary acts along its inward normal: its resultant is p times the chord",
           "[loads]") {
   const fs::path dir = fs::temp_directory_path() / ("rccm_loads_" + std::to_string(::getpid()));
   fs::create_directories(dir);

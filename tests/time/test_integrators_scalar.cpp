@@ -99,7 +99,7 @@ TEST_CASE("explicit Euler on the scalar system: first order, and it says when it
   CHECK(stiff.committed_beta()[0] >= 0.0);  // clamped, never negative
 }
 
-TEST_CASE("the rate-independent integrator is exact on the scalar system; contact-only keeps beta", "[integrator]") {
+TEST_CASE("the rate-independent integrator is exact on the scalar system: contact-only keeps beta", "[integrator]") {
   ScalarOpening ode(2e5, 0.03, 1e-6, 1.0, 3);
   IntegratorParams p;
   RateIndependentIntegrator ri(ode, time_grid(10.0, 50, {3.571}), p, 0.0);  // an exact "contact solve"

@@ -1,21 +1,42 @@
-// PLACEHOLDER (issue 17): replaced by its implementation.
+// The semi-smooth Newton contact solver at fixed beta (docs/solvers/newton.md): Newton's
+// method on the Alart-Curnier function F(y) = 0 of the condensed problem (docs/MODEL.md s4),
+// unknown y = Rbar + E u (so that u = W0 y + q0 is exact), with a generalized Jacobian of F,
+// an Armijo line search on the merit 1/2 |F|^2, and projected Gauss-Seidel sweeps when the
+// Newton direction fails (Alart and Curnier 1991; Christensen, Klarbring, Pang and Stromberg
+// 1998; Acary, Bremond and Huber 2018).
+//
+// `iterations` counts Newton steps and fallback sweeps, `exact_solves` the linear solves with
+// the Jacobian; the solve stops on the bipotential solver's scaled natural-map residual
+// (solver.tolerance), so that the two agree to it. Needs a dense W0.
+//
+// In 2D F is piecewise affine and a Newton step solves the linear problem of the pairs'
+// cases, the exact step's system (active_set.hpp), which keeps its factorization from one
+// solve to the next; in 3D the Jacobian (with the curvature of the friction disk) is
+// assembled and factorized at every step.
 #pragma once
 
-#include "rccm/contact/bipotential_solver.hpp"
+#include "rccm/contact/active_set.hpp"
+#include "rccm/contact/contact_solver.hpp"
 
 namespace rccm {
 
 class NewtonSolver final : public ContactSolver {
  public:
-  explicit NewtonSolver(const SolverParams& params) : fallback_(params) {}
+  explicit NewtonSolver(const SolverParams& params) : params_(params) {}
+
   ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
-                        const Eigen::VectorXd& u_start) override {
-    return fallback_.solve(pb, Rbar_start, u_start);
-  }
-  std::string failure_advice() const override { return fallback_.failure_advice(); }
+                        const Eigen::VectorXd& u_start) override;
+  std::string failure_advice() const override;
 
  private:
-  BipotentialSolver fallback_;
+  template <int dim>
+  class Iteration;
+  template <int dim>
+  ContactSolution solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start, const Eigen::VectorXd& u_start);
+  SolverParams params_;
+  // The 2D Newton steps' system and its factorization, reused while the cases repeat (a
+  // cache: results do not depend on it beyond the tolerance).
+  ActiveSetSystem<2> active_set_;
 };
 
 }  // namespace rccm

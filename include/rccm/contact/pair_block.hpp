@@ -1,0 +1,61 @@
+// What every contact solver needs of one contact pair at fixed beta, and the verifying pass
+// they share (docs/MODEL.md s4-s5). With c = M (u_i - W_ii y_i) (the other pairs'
+// contribution), the pair's displacement as a function of its own Rbar is u_i = Wb Rbar + c,
+// where M = (I - W_ii E_i)^-1 and Wb = M W_ii: the pair's flexibility with its spring folded in.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/contact/contact_problem.hpp"
+
+#include <Eigen/Core>
+
+#include <vector>
+
+namespace rccm {
+
+/// Pair i's dim components of a stacked interface vector (layout.hpp), as a fixed-size view.
+template <int dim, class V>
+auto pair(V& v, int i) {
+  return v.template segment<dim>(Eigen::Index(dim) * i);
+}
+
+/// The largest eigenvalue of a symmetric 1 x 1, 2 x 2 (closed form) or 3 x 3 matrix.
+double largest_eigenvalue(const Eigen::Matrix<double, 1, 1>& S);
+double largest_eigenvalue(const Eigen::Matrix2d& S);
+double largest_eigenvalue(const Eigen::Matrix3d& S);
+
+template <int dim>
+struct PairBlock {
+  using Vec = Eigen::Matrix<double, dim, 1>;
+  using Mat = Eigen::Matrix<double, dim, dim>;
+  Mat Wii;          // diagonal block of W0
+  Vec E;            // D1 - D(beta)
+  Mat M, Wb;        // (I - W_ii E)^-1 and the effective flexibility
+  Vec shift;        // (-u_ref,t, g0): u_i + shift = (du_t, g), the slip and the gap
+  double mubar;     // mu (1 - beta)
+  double rho;       // predictor step, N/mm (paper eq. 34, or 1 / lambda_max(Wb))
+  bool prescribed;  // every component prescribed: u_i does not depend on Rbar_i, Rbar_i = 0
+
+  /// The predictor of paper eq. 35 at local displacement u_i: tau = R - rho s(u_i).
+  Vec predictor(const Vec& R, const Vec& u_i) const { return R - rho * modified_velocity(u_i + shift, mubar); }
+};
+
+/// Every pair's block. Throws SolveError naming the pair that has no stiffness left.
+template <int dim>
+std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule);
+
+/// A predictor-corrector pass at (Rbar, u) that changes nothing (docs/MODEL.md s5): each
+/// pair's branch and projection proj(Rbar_i - rho s(u_i)), and the largest natural-map
+/// residual |Rbar_i - proj(...)| scaled by the pair's force level (at least `floor`).
+struct Verification {
+  double residual = 0;
+  int worst_node = -1;
+  std::vector<Status> branch;
+  Eigen::VectorXd projected;  // in the cone by construction: a converged solve's Rbar
+  double force_scale = 0;     // max(|Rbar|, |Radh|, floor)
+};
+template <int dim>
+Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks,
+                         const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u, double floor);
+
+}  // namespace rccm

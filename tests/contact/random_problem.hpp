@@ -1,0 +1,73 @@
+// Random condensed contact problems for the solvers' tests, and the check that a solution
+// satisfies the condensed equations and the law.
+#pragma once
+
+#include "rccm/contact/contact_problem.hpp"
+#include "rccm/contact/delassus.hpp"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <random>
+
+namespace rccm::testing {
+
+/// Random problem families: `Mild`: W = B B^T / m + I (diagonally dominant like an FE
+/// Delassus matrix), loads of either sign, mubar <= 0.4; `Hard`: W = B B^T / m + 0.01 I
+/// (condition number ~ 100, every pair coupled to every other), loads pressing the pairs into
+/// contact, three times as much shear (most pairs slide), mubar up to 1.
+enum class Family { Mild, Hard };
+
+/// A random condensed problem of n pairs of `dim` components, without or with springs D1
+/// folded into W0 = (W^-1 + D1)^-1 and D(beta) <= D1.
+struct RandomProblem {
+  RandomProblem(int n, int dim, Family family, bool springs, std::mt19937& gen) {
+    std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
+    const bool hard = family == Family::Hard;
+    const int m = dim * n;
+    pb.layout.dim = dim;
+    const Eigen::MatrixXd B = Eigen::MatrixXd::NullaryExpr(m, m, [&]() { return U(gen); });
+    Eigen::MatrixXd Wd = B * B.transpose() / double(m) + (hard ? 0.01 : 1.0) * Eigen::MatrixXd::Identity(m, m);
+    pb.q0 = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
+    if (hard)
+      for (int i = 0; i < n; ++i) {
+        pb.q0.segment(dim * i, dim - 1) *= 3.0;
+        pb.q0[dim * i + dim - 1] -= 0.5;
+      }
+    pb.mubar = Eigen::VectorXd::NullaryExpr(n, [&]() { return (hard ? 1.0 : 0.4) * P(gen); });
+    pb.g0 = Eigen::VectorXd::Zero(n);
+    pb.u_ref = Eigen::VectorXd::NullaryExpr(m, [&]() { return 0.1 * U(gen); });
+    pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(m);
+    if (springs) {
+      pb.D1 = Eigen::VectorXd::NullaryExpr(m, [&]() { return 2.0 * P(gen); });
+      for (int i = 0; i < n; ++i) {
+        const double beta = P(gen);
+        pb.Dbeta.segment(dim * i, dim) = beta * beta * pb.D1.segment(dim * i, dim);
+      }
+      Wd = (Wd.inverse() + Eigen::MatrixXd(pb.D1.asDiagonal())).inverse();
+      Wd = 0.5 * (Wd + Wd.transpose()).eval();
+    }
+    W = DenseDelassus(Wd);
+    pb.W0 = &W;
+  }
+  RandomProblem(const RandomProblem&) = delete;
+  const Eigen::MatrixXd& matrix() const { return *W.dense(); }
+
+  DenseDelassus W{Eigen::MatrixXd()};
+  ContactProblem pb;
+};
+
+/// The solution satisfies the condensed equations u = W0 (Rbar + E u) + q0 and the law
+/// (Signorini, Coulomb, complementarity: relative residuals).
+inline void require_solution(const ContactProblem& pb, const ContactSolution& s) {
+  const Eigen::VectorXd y = s.Rbar + (pb.D1 - pb.Dbeta).cwiseProduct(s.u);
+  Eigen::VectorXd Wy(y.size());
+  pb.W0->multiply(y, Wy);
+  REQUIRE((Wy + pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));
+  const ContactResiduals r = residuals(pb, s);
+  INFO("pen " << r.penetration << " ten " << r.tension << " comp " << r.complementarity << " coul " << r.coulomb
+              << " stick " << r.stick_slip << " dir " << r.slip_direction);
+  REQUIRE(r.max() <= 1e-8);
+}
+
+}  // namespace rccm::testing
