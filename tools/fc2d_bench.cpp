@@ -1,12 +1,12 @@
-// fc2d-bench [--benchmarks CONFIG_DIR] [FILE.dat...]: the project's bipotential solver
-// (Gauss-Seidel and Jacobi forms) against Siconos' fc2d NSGS on 2D frictional contact
+// fc2d-bench [--benchmarks CONFIG_DIR] [FILE.dat...]: the project's contact solvers (bipotential
+// in its Gauss-Seidel and Jacobi forms, rccm, newton) against Siconos' fc2d NSGS on 2D frictional contact
 // problems: Siconos .dat files (e.g. ../shared/data/siconos-fc2d/) and, with --benchmarks,
 // the condensed problems that B1 and B2 (Euler-210) solve at every 40th step.
 // Per problem and solver: iterations, Siconos' error measure (fc2d_compute_error) of the
-// solution, time per solve, and Siconos' time over ours at the same error: Siconos is asked
-// for the error our Gauss-Seidel solve reached, or 1e-10 (our tolerance) where ours went
-// below that (Siconos cannot always reach round-off; README "Performance").
-#include "rccm/contact/bipotential_solver.hpp"
+// solution, time per solve, and Siconos' time over each solver's: Siconos is asked for the
+// error our default (bipotential Gauss-Seidel) solve reached, or 1e-10 (our tolerance) where
+// it went below that (Siconos cannot always reach round-off; README "Performance").
+#include "rccm/contact/contact_solver.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
 #include "rccm/io/config_reader.hpp"
@@ -17,6 +17,7 @@
 #include <cstring>
 #include <functional>
 #include <iostream>
+#include <vector>
 
 using namespace rccm;
 
@@ -41,33 +42,56 @@ void row(const std::string& name, int contacts, const char* solver, int iteratio
               1e3 * seconds, ratio > 0 ? std::to_string(ratio).substr(0, 6).c_str() : "", converged ? "" : "  (not converged)");
 }
 
-/// Our two forms, then Siconos NSGS at the error our Gauss-Seidel solve reached.
+/// One of our solvers as the bench runs it: its name in the table and its settings.
+struct Contender {
+  const char* name;
+  ContactMethod method;
+  SweepForm form;
+};
+constexpr Contender contenders[] = {{"bipotential-GS", ContactMethod::Bipotential, SweepForm::GaussSeidel},
+                                    {"bipotential-J", ContactMethod::Bipotential, SweepForm::Jacobi},
+                                    {"rccm", ContactMethod::Rccm, SweepForm::GaussSeidel},
+                                    {"newton", ContactMethod::Newton, SweepForm::GaussSeidel}};
+
+/// Each of our solvers cold from zero, then Siconos NSGS at the error our default solve
+/// (bipotential Gauss-Seidel) reached; the last column is Siconos' time over each solver's.
 void compare(const std::string& name, const PlainContactProblem& p, const ContactProblem& pb) {
-  double ours_error = 0, ours_seconds = 0;
-  for (SweepForm form : {SweepForm::GaussSeidel, SweepForm::Jacobi}) {
+  struct Measured {
+    const char* name;
+    ContactSolution s;
+    double error, seconds;
+  };
+  std::vector<Measured> ours;
+  for (const Contender& c : contenders) {
     SolverParams params;
     params.tolerance = 1e-10;
     params.max_iterations = 100000;
-    params.form = form;
-    ContactSolution s;
-    const double seconds = seconds_per_call([&] { s = BipotentialSolver(params).solve(pb, {}, {}); });
-    const double e = peer::error(p, s.Rbar);
-    if (form == SweepForm::GaussSeidel) ours_error = e, ours_seconds = seconds;
-    row(name, pb.size(), form == SweepForm::GaussSeidel ? "bipotential-GS" : "bipotential-J", s.iterations, e,
-        seconds, 0, s.converged);
+    params.method = c.method;
+    params.form = c.form;
+    Measured m{c.name, {}, 0, 0};
+    try {
+      m.seconds = seconds_per_call([&] { m.s = make_contact_solver(params)->solve(pb, {}, {}); });
+    } catch (const SolveError& e) {  // a solver that cannot take this problem says why
+      std::printf("%-42s %8d  %-14s  cannot: %s\n", name.c_str(), pb.size(), c.name, e.what());
+      continue;
+    }
+    m.error = peer::error(p, m.s.Rbar);
+    ours.push_back(m);
   }
-  const double target = std::max(ours_error, 1e-10);
+  const double target = std::max(ours.front().error, 1e-10);
   peer::PeerSolution n;
   const double seconds = seconds_per_call([&] { n = peer::solve(p, "nsgs", target, 100000); });
-  row(name, pb.size(), "siconos-NSGS", n.iterations, n.error, seconds, seconds / ours_seconds, n.info == 0);
+  for (const Measured& m : ours)
+    row(name, pb.size(), m.name, m.s.iterations, m.error, m.seconds, seconds / m.seconds, m.s.converged);
+  row(name, pb.size(), "siconos-NSGS", n.iterations, n.error, seconds, 1.0, n.info == 0);
   // Siconos solves the plain form, springs folded in: (I - W0 E)^-1 W0, a dense solve of m
-  // right-hand sides that our solver does without (its springs stay in the local solve).
+  // right-hand sides that our solvers do without (their springs stay in the local solve).
   // Where the problem has springs, building that form is part of solving it with Siconos.
   if (!pb.D1.isZero(0.0)) {
     PlainContactProblem built;
     const double form_seconds = seconds_per_call([&] { built = plain_form(pb); });
     row(name, pb.size(), "siconos+form", n.iterations, n.error, seconds + form_seconds,
-        (seconds + form_seconds) / ours_seconds, n.info == 0);
+        (seconds + form_seconds) / ours.front().seconds, n.info == 0);
   }
 }
 
@@ -80,7 +104,7 @@ int main(int argc, char** argv) {
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a line per solver, even when interrupted
   std::printf("%-42s %8s  %-14s %10s %12s %12s %10s\n", "problem", "contacts", "solver", "iterations", "error",
-              "ms/solve", "siconos/GS");
+              "ms/solve", "siconos/it");
   int status = 0;
   for (int a = 1; a < argc; ++a) {
     try {

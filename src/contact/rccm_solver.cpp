@@ -166,7 +166,6 @@ const Eigen::MatrixXd& RccmSolver::stiffness(const ContactProblem& pb) {
   const Eigen::MatrixXd* W0 = pb.W0->dense();
   RCCM_VERIFY(W0 != nullptr, "the rccm solver inverts W0: it needs the dense W0");
   if (W0_.rows() == W0->rows() && W0_ == *W0) return Kc_;
-  W0_ = *W0;
   // A prescribed component (its row and column of W0 zero) gets a unit flexibility of its
   // own: the inverse exists, and the sweeps never move that component.
   Eigen::MatrixXd A = *W0;
@@ -174,7 +173,13 @@ const Eigen::MatrixXd& RccmSolver::stiffness(const ContactProblem& pb) {
   for (Eigen::Index k = 0; k < A.rows(); ++k)
     if (A(k, k) <= tiny) A(k, k) = 1.0;
   const Eigen::LLT<Eigen::MatrixXd> llt(A);
-  RCCM_VERIFY(llt.info() == Eigen::Success, "W0 is positive definite");
+  // A finite-element W0 always is (each contact pair holds its own DOFs); a multibody
+  // problem with more contact rows than degrees of freedom is not: no interface stiffness.
+  if (llt.info() != Eigen::Success)
+    throw SolveError("the rccm solver works on the interface displacements and needs W0 positive definite; "
+                     "this W0 is singular (more contact rows than degrees of freedom): use solver.method = "
+                     "\"bipotential\" or \"newton\"");
+  W0_ = *W0;
   Kc_ = llt.solve(Eigen::MatrixXd::Identity(A.rows(), A.cols()));
   Kc_ = 0.5 * (Kc_ + Kc_.transpose()).eval();
   Kc_norm_ = Kc_.cwiseAbs().rowwise().sum().maxCoeff();
