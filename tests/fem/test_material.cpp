@@ -125,6 +125,18 @@ TEST_CASE("the out-of-plane components follow the hypothesis", "[material]") {
   CHECK(sigma[3] == Approx(lambda * (eps[0] + eps[1] + eps[3]) + 2 * mu * eps[3]));  // the hoop stress
 }
 
+TEST_CASE("orthotropic out-of-plane coupling: nu13 couples axis 1 to 3, nu23 axis 2 to 3", "[material]") {
+  // Material axes along x, y: eps_33 = -nu13 / E1 sigma_11 - nu23 / E2 sigma_22 + sigma_33 / E3.
+  const double E1 = 140e3, E2 = 10e3, E3 = 9e3, nu12 = 0.3, nu13 = 0.25, nu23 = 0.45, G12 = 5e3;
+  Voigt eps(1e-3, 2e-3, 5e-4, 0), sigma;
+  Material(orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, 0, Hypothesis::PlaneStrain)).complete(eps, sigma);
+  CHECK(sigma[3] == Approx(E3 * (nu13 * sigma[0] / E1 + nu23 * sigma[1] / E2)));  // eps_33 = 0
+  eps << 1e-3, 2e-3, 5e-4, 0;
+  Material(orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, 0, Hypothesis::PlaneStress)).complete(eps, sigma);
+  CHECK(sigma[3] == 0);
+  CHECK(eps[3] == Approx(-nu13 * sigma[0] / E1 - nu23 * sigma[1] / E2));  // sigma_33 = 0
+}
+
 TEST_CASE("patch test: a distorted patch carries uniform strain exactly, plane and axisymmetric", "[material]") {
   for (bool triangles : {false, true})
     for (bool axisymmetric : {false, true}) {
