@@ -252,7 +252,8 @@ std::string BipotentialSolver::failure_advice() const {
     m << "the Jacobi form diverges on strongly coupled interfaces: use solver.form = \"gauss-seidel\" "
       << "or under-relax it (solver.relaxation = 0.2 works on B2)";
   else
-    m << "raise solver.max_iterations, loosen solver.tolerance (" << params_.tolerance << ") or take smaller steps";
+    m << "try solver.method = \"newton\" (it solved every stall seen so far), raise solver.max_iterations, "
+      << "loosen solver.tolerance (" << params_.tolerance << ") or take smaller steps";
   return m.str();
 }
 

@@ -231,7 +231,7 @@ std::string RccmSolver::failure_advice() const {
   std::ostringstream m;
   m << "projected Gauss-Seidel converges slowly on a stiff interface: raise solver.max_iterations ("
     << params_.max_iterations << "), try another solver.over_relaxation in (1, 2) (now " << params_.over_relaxation
-    << "), loosen solver.tolerance (" << params_.tolerance << "), or use solver.method = \"bipotential\"";
+    << "), loosen solver.tolerance (" << params_.tolerance << "), or use solver.method = \"newton\" or \"bipotential\"";
   return m.str();
 }
 

@@ -269,3 +269,27 @@ TEST_CASE("B1 and B2 with solver.method = newton: the bipotential solver's beta 
     require_same_run("b2.cfg", {}, {1e-12, 1e-12, 1e-12, 1e-9}, {1e-10, 1e-10, 1e-10, 1e-9});
   }
 }
+
+TEST_CASE("Newton finishes the curved rate-independent peel where the Gauss-Seidel solvers stall", "[newton-solver]") {
+  const std::string file = std::string(RCCM_SOURCE_DIR) + "/tests/contact/cases/curved_peel_stall.cfg";
+  const auto run = [&](const char* method, double& worst, double& growth) {
+    RunOptions options;
+    Eigen::VectorXd previous;
+    worst = growth = 0;
+    options.observer = [&](const AcceptedStep& a) {
+      worst = std::max(worst, a.residuals.max());
+      if (previous.size() == a.state.beta.size()) growth = std::max(growth, (a.state.beta - previous).maxCoeff());
+      previous = a.state.beta;
+    };
+    return Simulation(load_config(file, {std::string("solver.method=") + method}), options).run();
+  };
+  double worst = 0, growth = 0;
+  const RunResult newton = run("newton", worst, growth);
+  INFO("newton: " << newton.stopped);
+  REQUIRE(newton.stopped.empty());
+  CHECK(worst <= 1e-8);  // Signorini-Coulomb at every committed state
+  CHECK(growth <= 0.0);  // beta never grows back
+  CHECK(newton.snapshots.back().beta.minCoeff() < 0.5);  // the front has run down the arc
+  // The bipotential solver stalls at the front's jump (t = 8.1 s) and says to try Newton.
+  CHECK_THROWS_WITH(run("bipotential", worst, growth), Catch::Contains("t = 8.1 s") && Catch::Contains("solver.method = \"newton\""));
+}
