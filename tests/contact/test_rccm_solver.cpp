@@ -41,12 +41,15 @@ void require_solution(const ContactProblem& pb, const ContactSolution& s, const 
 
 }  // namespace
 
-TEST_CASE("rccm: random problems, with and without springs: the law holds, the bipotential solution",
+TEST_CASE("rccm: random problems, with and without springs and initial gaps: the law holds, the bipotential "
+          "solution",
           "[rccm-solver]") {
   std::mt19937 gen(7);
+  std::uniform_real_distribution<double> gap(0, 0.5);
   for (bool springs : {false, true})
     for (int trial = 0; trial < 40; ++trial) {
-      const RandomProblem rp(1 + trial % 8, 2, Family::Mild, springs, gen);
+      RandomProblem rp(1 + trial % 8, 2, Family::Mild, springs, gen);
+      if (trial % 2) rp.pb.g0 = Eigen::VectorXd::NullaryExpr(rp.pb.size(), [&]() { return gap(gen); });
       const ContactSolution s = RccmSolver(params()).solve(rp.pb, {}, {});
       const ContactSolution reference = BipotentialSolver(params()).solve(rp.pb, {}, {});
       INFO("trial " << trial << " springs " << springs << ": " << s.iterations << " sweeps, residual " << s.residual);
