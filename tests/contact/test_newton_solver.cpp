@@ -104,6 +104,34 @@ TEST_CASE("Newton on random 3D problems (the friction disk), mild and hard", "[n
   CHECK(hard.iterations <= 7 * 48);
 }
 
+TEST_CASE("Newton on ill-conditioned problems with mu up to 2: the line search keeps the steps few", "[newton-solver]") {
+  // The hard family with W's spectrum shifted down to a condition number ~ 1e4 and twice the
+  // friction. Measured: 319 (2D) and 367 (3D) Newton steps for 60 problems of 16 to 47 pairs,
+  // all converged; with every full step accepted (no line search) 865 in 2D, one not converged
+  // in 500.
+  std::mt19937 gen(29);
+  for (int dim : {2, 3}) {
+    int iterations = 0;
+    for (int trial = 0; trial < 60; ++trial) {
+      RandomProblem rp(16 + trial % 32, dim, Family::Hard, trial % 2 == 1, gen);
+      rp.pb.mubar *= 2.0;
+      Eigen::MatrixXd W = rp.matrix();
+      W.diagonal().array() -= 0.0099;
+      rp.W = DenseDelassus(W);
+      rp.pb.W0 = &rp.W;
+      SolverParams p = params();
+      p.max_iterations = 500;
+      const ContactSolution s = NewtonSolver(p).solve(rp.pb, {}, {});
+      INFO("dim " << dim << " trial " << trial << ": " << s.iterations << " iterations");
+      REQUIRE(s.converged);
+      require_solution(rp.pb, s);
+      iterations += s.iterations;
+    }
+    INFO("dim " << dim << ": " << iterations << " Newton iterations for 60 problems");
+    CHECK(iterations <= 8 * 60);
+  }
+}
+
 TEST_CASE("Newton's local convergence: quadratic in 3D, finite in 2D (F piecewise affine)", "[newton-solver]") {
   std::mt19937 gen(23);
   for (int trial = 0; trial < 8; ++trial) {
