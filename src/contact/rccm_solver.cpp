@@ -211,7 +211,7 @@ ContactSolution RccmSolver::solve_in(const ContactProblem& pb, const Eigen::Vect
   ContactSolution& s = it.s;
   // The fixed point on the sliding threshold (eq. 3): each Tresca problem is swept until a
   // sweep changes no force by more than the tolerance; then the Coulomb residual says whether
-  // its thresholds were the solution's, else they are updated from its normal forces (eq. 6).
+  // its thresholds were the solution's (eq. 6), else they are updated from its normal forces (eq. 3).
   it.update_thresholds();
   for (s.iterations = 1; s.iterations <= params_.max_iterations; ++s.iterations) {
     const double change = it.sweep();
