@@ -78,7 +78,6 @@ class BipotentialSolver::Iteration {
   /// after the sweep.
   void sweep() {
     const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
-    const int local_steps = gauss_seidel ? params_.local_iterations : 1;  // Jacobi: the paper's one step
     const double noise = noise_floor();
     const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
     Eigen::VectorXd y_new = s.y;
@@ -86,18 +85,12 @@ class BipotentialSolver::Iteration {
       const PairBlock<dim>& b = blocks_[i];
       if (b.prescribed) continue;
       const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
-      Vec R = pair<dim>(s.Rbar, i), ui = b.Wb * R + c;
-      for (int k = 0; k < local_steps; ++k) {
-        const Vec tau = b.predictor(R, ui);             // predictor, eq. 35
-        const Vec R_next = project_cone(tau, b.mubar);  // corrector, eqs. 36-38
-        s.status[i] = cone_branch(tau, b.mubar);
-        const double change = (R_next - R).norm();
-        R = R_next;
-        ui = b.Wb * R + c;
-        if (change <= tuning::local_tolerance_fraction * params_.tolerance * std::max(R.norm(), F_old) + noise) break;
-      }
+      Vec R = pair<dim>(s.Rbar, i);
+      const double relative = tuning::local_tolerance_fraction * params_.tolerance;
+      s.status[i] = gauss_seidel ? solve_pair<dim>(b, c, R, params_.local_iterations, relative, F_old, noise)
+                                 : iterate_pair<dim>(b, c, R, 1, relative, F_old, noise);  // Jacobi: the paper's one step
       pair<dim>(R_projected_, i) = R;
-      const Vec yi = R + b.E.cwiseProduct(ui);
+      const Vec yi = R + b.E.cwiseProduct(Vec(b.Wb * R + c));
       if (gauss_seidel) {
         pb_.W0->add_response(pb_.layout.offset(i), yi - pair<dim>(s.y, i), s.u);
         pair<dim>(s.y, i) = yi;

@@ -172,23 +172,17 @@ class NewtonSolver::Iteration {
     return false;
   }
 
-  /// A projected Gauss-Seidel sweep: pair by pair, the bipotential solver's local
-  /// predictor-corrector (paper eqs. 35-38) with the other pairs held, u updated at once.
+  /// A projected Gauss-Seidel sweep: pair by pair, the bipotential solver's local solve
+  /// (pair_block.hpp) with the other pairs held, u updated at once.
   void sweep() {
     const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
     for (int i = 0; i < pb_.size(); ++i) {
       const PairBlock<dim>& b = blocks_[i];
       if (b.prescribed) continue;
       const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
-      Vec R = pair<dim>(s.Rbar, i), ui = b.Wb * R + c;
-      for (int k = 0; k < params_.local_iterations; ++k) {
-        const Vec R_next = project_cone(b.predictor(R, ui), b.mubar);
-        const double change = (R_next - R).norm();
-        R = R_next;
-        ui = b.Wb * R + c;
-        if (change <= tuning::local_tolerance_fraction * params_.tolerance * std::max(R.norm(), F_old)) break;
-      }
-      const Vec yi = R + b.E.cwiseProduct(ui);
+      Vec R = pair<dim>(s.Rbar, i);
+      solve_pair<dim>(b, c, R, params_.local_iterations, tuning::local_tolerance_fraction * params_.tolerance, F_old, 0.0);
+      const Vec yi = R + b.E.cwiseProduct(Vec(b.Wb * R + c));
       pb_.W0->add_response(pb_.layout.offset(i), yi - pair<dim>(s.y, i), s.u);
       pair<dim>(s.y, i) = yi;
       pair<dim>(s.Rbar, i) = R;

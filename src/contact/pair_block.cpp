@@ -58,6 +58,71 @@ std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) 
   return blocks;
 }
 
+namespace {
+
+/// The 2D pair's exact solution (docs/MODEL.md s5): with d = c + shift the slip and gap at
+/// R = 0, v = Wb R + d must be (du_t, g) with
+///   separated: R = 0, g >= 0;   stick: v = 0, |R_t| <= mubar R_n;
+///   slide: g = 0, R_t = -sigma mubar R_n, R_n >= 0, sigma du_t >= 0 (sigma = +-1).
+/// False when no case fits (Wb singular: a prescribed component).
+bool solve_pair_exactly(const PairBlock<2>& b, const Eigen::Vector2d& c, Eigen::Vector2d& R, Status& status) {
+  const Eigen::Vector2d d = c + b.shift;
+  if (d[1] >= 0) {
+    R.setZero();
+    status = Status::Separated;
+    return true;
+  }
+  const double det = b.Wb.determinant();
+  if (!(det > 1e-12 * b.Wb.squaredNorm())) return false;
+  const Eigen::Vector2d stick = -b.Wb.inverse() * d;
+  if (stick[1] >= 0 && std::abs(stick[0]) <= b.mubar * stick[1]) {
+    R = stick;
+    status = Status::Stick;
+    return true;
+  }
+  for (double sigma : {1.0, -1.0}) {
+    const Eigen::Vector2d a(-sigma * b.mubar, 1.0);  // R = R_n a
+    const double Wa_n = b.Wb.row(1).dot(a);
+    if (!(Wa_n > 0)) continue;
+    const double Rn = -d[1] / Wa_n;
+    if (sigma * (b.Wb.row(0).dot(a) * Rn + d[0]) < 0) continue;
+    R = Rn * a;
+    status = Status::Slide;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+template <int dim>
+Status iterate_pair(const PairBlock<dim>& b, const typename PairBlock<dim>::Vec& c, typename PairBlock<dim>::Vec& R,
+                    int max_steps, double relative, double force, double noise) {
+  using Vec = typename PairBlock<dim>::Vec;
+  Status status = Status::Separated;
+  Vec ui = b.Wb * R + c;
+  for (int k = 0; k < max_steps; ++k) {
+    const Vec tau = b.predictor(R, ui);             // predictor, eq. 35
+    const Vec R_next = project_cone(tau, b.mubar);  // corrector, eqs. 36-38
+    status = cone_branch(tau, b.mubar);
+    const double change = (R_next - R).norm();
+    R = R_next;
+    ui = b.Wb * R + c;
+    if (change <= relative * std::max(R.norm(), force) + noise) break;
+  }
+  return status;
+}
+
+template <int dim>
+Status solve_pair(const PairBlock<dim>& b, const typename PairBlock<dim>::Vec& c, typename PairBlock<dim>::Vec& R,
+                  int max_steps, double relative, double force, double noise) {
+  if constexpr (dim == 2) {
+    Status status;
+    if (solve_pair_exactly(b, c, R, status)) return status;
+  }
+  return iterate_pair(b, c, R, max_steps, relative, force, noise);
+}
+
 template <int dim>
 Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks,
                          const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u, double floor) {
@@ -84,6 +149,14 @@ Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<d
 
 template std::vector<PairBlock<2>> make_blocks<2>(const ContactProblem&, RhoRule);
 template std::vector<PairBlock<3>> make_blocks<3>(const ContactProblem&, RhoRule);
+template Status iterate_pair<2>(const PairBlock<2>&, const Eigen::Vector2d&, Eigen::Vector2d&, int, double, double,
+                                double);
+template Status iterate_pair<3>(const PairBlock<3>&, const Eigen::Vector3d&, Eigen::Vector3d&, int, double, double,
+                                double);
+template Status solve_pair<2>(const PairBlock<2>&, const Eigen::Vector2d&, Eigen::Vector2d&, int, double, double,
+                              double);
+template Status solve_pair<3>(const PairBlock<3>&, const Eigen::Vector3d&, Eigen::Vector3d&, int, double, double,
+                              double);
 template Verification verify_pass<2>(const ContactProblem&, const std::vector<PairBlock<2>>&, const Eigen::VectorXd&,
                                      const Eigen::VectorXd&, double);
 template Verification verify_pass<3>(const ContactProblem&, const std::vector<PairBlock<3>>&, const Eigen::VectorXd&,

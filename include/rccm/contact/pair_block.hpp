@@ -44,6 +44,21 @@ struct PairBlock {
 template <int dim>
 std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule);
 
+/// Pair i's local problem with the other pairs held (docs/MODEL.md s5): find Rbar_i with
+/// u_i = Wb Rbar_i + c and Rbar_i = proj(Rbar_i - rho s(u_i), K_mubar).
+/// `iterate_pair`: the predictor-corrector (paper eqs. 35-38) iterated from R, at most
+/// `max_steps` times, until a step changes R by at most `relative` max(|R|, force) + noise.
+/// `solve_pair`: in 2D the exact solution of the pair's case (separated, stick, or slide
+/// either way: each a 2 x 2 linear problem and its consistency conditions); in 3D, or where
+/// no case fits (a pair with a prescribed component), `iterate_pair`.
+/// Both update R and return the pair's status.
+template <int dim>
+Status iterate_pair(const PairBlock<dim>& b, const typename PairBlock<dim>::Vec& c, typename PairBlock<dim>::Vec& R,
+                    int max_steps, double relative, double force, double noise);
+template <int dim>
+Status solve_pair(const PairBlock<dim>& b, const typename PairBlock<dim>::Vec& c, typename PairBlock<dim>::Vec& R,
+                  int max_steps, double relative, double force, double noise);
+
 /// A predictor-corrector pass at (Rbar, u) that changes nothing (docs/MODEL.md s5): each
 /// pair's branch and projection proj(Rbar_i - rho s(u_i)), and the largest natural-map
 /// residual |Rbar_i - proj(...)| scaled by the pair's force level (at least `floor`).

@@ -1,0 +1,79 @@
+// A contact pair's local problem (contact/pair_block): the exact 2D solution of its case
+// satisfies the law R = proj(R - rho s(Wb R + c), K_mubar), is the limit of the iterated
+// predictor-corrector, and lands in each regime where the closed form says.
+#include "rccm/contact/pair_block.hpp"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <random>
+
+using namespace rccm;
+
+namespace {
+
+/// A pair of random SPD flexibility Wb (with off-diagonal coupling), slip and gap shift, and mubar.
+PairBlock<2> random_pair(std::mt19937& gen) {
+  std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
+  PairBlock<2> b;
+  const Eigen::Matrix2d B = Eigen::Matrix2d::NullaryExpr([&]() { return U(gen); });
+  b.Wii = B * B.transpose() + 0.2 * Eigen::Matrix2d::Identity();
+  b.E.setZero();
+  b.M.setIdentity();
+  b.Wb = b.Wii;
+  b.shift = Eigen::Vector2d(0.1 * U(gen), 0.2 * P(gen));
+  b.mubar = 0.8 * P(gen);
+  b.rho = 1.0 / b.Wb.eigenvalues().real().maxCoeff();
+  b.prescribed = false;
+  return b;
+}
+
+/// The law's residual |R - proj(R - rho s(u), K_mubar)| at u = Wb R + c, relative.
+double law_residual(const PairBlock<2>& b, const Eigen::Vector2d& c, const Eigen::Vector2d& R) {
+  const Eigen::Vector2d u = b.Wb * R + c;
+  return (R - project_cone(b.predictor(R, u), b.mubar)).norm() / (1 + R.norm());
+}
+
+}  // namespace
+
+TEST_CASE("the exact 2D local solve meets the law and is the predictor-corrector's limit", "[pair-block]") {
+  std::mt19937 gen(3);
+  std::uniform_real_distribution<double> U(-1, 1);
+  int seen[3] = {0, 0, 0};
+  for (int trial = 0; trial < 5000; ++trial) {
+    const PairBlock<2> b = random_pair(gen);
+    const Eigen::Vector2d c(U(gen), U(gen));
+    Eigen::Vector2d exact = Eigen::Vector2d::Zero(), iterated = Eigen::Vector2d::Zero();
+    const Status s = solve_pair<2>(b, c, exact, 100, 1e-12, 0, 0);
+    const Status s_it = iterate_pair<2>(b, c, iterated, 100000, 1e-15, 0, 0);
+    INFO("trial " << trial << ": exact " << exact.transpose() << " (" << status_name(s) << "), iterated "
+                  << iterated.transpose() << " (" << status_name(s_it) << ")");
+    REQUIRE(law_residual(b, c, exact) <= 1e-13);
+    REQUIRE((exact - iterated).norm() <= 1e-9 * (1 + exact.norm()));
+    ++seen[static_cast<int>(s)];
+  }
+  CHECK(seen[0] > 300);  // every regime is visited
+  CHECK(seen[1] > 300);
+  CHECK(seen[2] > 300);
+}
+
+TEST_CASE("the exact 2D local solve in each regime, by hand", "[pair-block]") {
+  // Wb = I, shift = 0, mubar = 0.5: u = R + c.
+  PairBlock<2> b;
+  b.Wii = b.Wb = b.M = Eigen::Matrix2d::Identity();
+  b.E.setZero();
+  b.shift.setZero();
+  b.mubar = 0.5;
+  b.rho = 1;
+  b.prescribed = false;
+  Eigen::Vector2d R;
+  R.setConstant(7);  // the exact solve does not depend on the start
+  CHECK(solve_pair<2>(b, Eigen::Vector2d(0.3, 1.0), R, 100, 1e-12, 0, 0) == Status::Separated);
+  CHECK(R.norm() == 0.0);
+  CHECK(solve_pair<2>(b, Eigen::Vector2d(0.2, -1.0), R, 100, 1e-12, 0, 0) == Status::Stick);
+  CHECK((R - Eigen::Vector2d(-0.2, 1.0)).norm() < 1e-15);
+  CHECK(solve_pair<2>(b, Eigen::Vector2d(2.0, -1.0), R, 100, 1e-12, 0, 0) == Status::Slide);
+  CHECK((R - Eigen::Vector2d(-0.5, 1.0)).norm() < 1e-15);  // R_t = -mubar R_n, against the slip 1.5
+  CHECK(solve_pair<2>(b, Eigen::Vector2d(-2.0, -1.0), R, 100, 1e-12, 0, 0) == Status::Slide);
+  CHECK((R - Eigen::Vector2d(0.5, 1.0)).norm() < 1e-15);
+}
