@@ -129,6 +129,18 @@ class BipotentialSolver::Iteration {
     return true;
   }
 
+  /// Whether an exact step costs less than the sweeps still to go: with a factorization of
+  /// this size at hand (a run's later solves) always; without one, when the sweeps' geometric
+  /// rate of the change of Rbar predicts more than m / tuning::sweeps_per_factorization
+  /// sweeps to the tolerance (a dense factorization costs about m^3 / 3 products, a sweep m^2).
+  bool exact_step_pays(const ActiveSetSystem<dim>& system) const {
+    if (system.pattern().size() == blocks_.size()) return true;
+    const double rate = change_ / previous_change_;
+    if (!(rate < 1) || change_ <= 0) return true;
+    const double sweeps_left = std::log(params_.tolerance / change_) / std::log(rate);
+    return sweeps_left > double(pb_.W0->size()) / tuning::sweeps_per_factorization;
+  }
+
   /// The pattern of the last verifying pass, and of the last sweep.
   Pattern verified_pattern() const { return pattern_of<dim>(check_.branch, blocks_, check_.projected); }
   Pattern swept_pattern() const { return pattern_of<dim>(s.status, blocks_, s.Rbar); }
@@ -153,6 +165,8 @@ class BipotentialSolver::Iteration {
   bool criteria_hold(const Eigen::VectorXd& R_old) {
     s.Rbar = s.y - E_.cwiseProduct(s.u);
     const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / verify();
+    previous_change_ = change_;
+    change_ = change;
     return change <= params_.tolerance && s.residual <= params_.tolerance;
   }
 
@@ -162,6 +176,7 @@ class BipotentialSolver::Iteration {
   const Eigen::VectorXd E_;
   Eigen::VectorXd R_projected_;  // the projections of the last sweep: the reported Rbar
   Verification check_;           // the last verifying pass
+  double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
 };
 
 ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
@@ -228,7 +243,7 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
     previous = pattern;
     ++since_exact;
     if (exact && repeats >= 1 && (pattern != solved || since_exact >= tuning::exact_step_interval) &&
-        s.exact_solves < tuning::max_exact_steps) {
+        s.exact_solves < tuning::max_exact_steps && it.exact_step_pays(active_set<dim>())) {
       it.exact_step(active_set<dim>(), pattern);  // if singular, the sweeps go on
       ++s.exact_solves;
       since_exact = 0;

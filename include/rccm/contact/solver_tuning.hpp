@@ -12,6 +12,10 @@ constexpr int exact_first_patterns = 4;
 /// steps of the same pattern.
 constexpr int max_exact_steps = 10;
 constexpr int exact_step_interval = 3;
+/// Without a factorization at hand, an exact step is taken only when the sweeps still to go
+/// exceed m / this (a dense factorization of m unknowns costs about m^3 / 3 products, a sweep
+/// about m^2): measured on fc2d-bench, B1's cold steps need it, the granular flow does not.
+constexpr double sweeps_per_factorization = 3;
 /// Sweeps between two fresh products u = W0 y + q0: Gauss-Seidel's incremental updates of u
 /// accumulate round-off; a product reads all of W0, as much as a sweep.
 constexpr int refresh_interval = 8;
