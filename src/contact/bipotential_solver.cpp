@@ -179,20 +179,8 @@ class BipotentialSolver::Iteration {
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
 };
 
-ContactSolution BipotentialSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
-                                         const Eigen::VectorXd& u_start) {
-  const Eigen::Index m = pb.W0->size();
-  RCCM_VERIFY(pb.q0.size() == m && pb.layout.offset(pb.size()) == m, "contact problem sizes");
-  // No load (q0 = 0, e.g. t = 0): the solution is exactly zero. Iterating towards it from a
-  // warm start would shrink Rbar geometrically while its relative change stays constant.
-  if (pb.q0.isZero(0.0)) {
-    ContactSolution zero;
-    zero.Rbar = zero.y = zero.u = Eigen::VectorXd::Zero(m);
-    zero.status.assign(pb.size(), Status::Separated);
-    zero.converged = true;
-    return zero;
-  }
-  RCCM_VERIFY(pb.layout.dim == 2 || pb.layout.dim == 3, "contact pairs of 2 or 3 components");
+ContactSolution BipotentialSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                               const Eigen::VectorXd& u_start) {
   return pb.layout.dim == 2 ? solve_in<2>(pb, Rbar_start, u_start) : solve_in<3>(pb, Rbar_start, u_start);
 }
 

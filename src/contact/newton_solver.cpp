@@ -261,21 +261,9 @@ class NewtonSolver::Iteration {
   std::vector<AlartCurnier<dim>> cases_;  // at the current y
 };
 
-ContactSolution NewtonSolver::solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
-                                    const Eigen::VectorXd& u_start) {
-  const Eigen::Index m = pb.W0->size();
-  RCCM_VERIFY(pb.q0.size() == m && pb.layout.offset(pb.size()) == m, "contact problem sizes");
+ContactSolution NewtonSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                          const Eigen::VectorXd& u_start) {
   RCCM_VERIFY(pb.W0->dense() != nullptr, "the Newton contact solver needs a dense W0");
-  // No load (q0 = 0, e.g. t = 0): the solution is exactly zero (as for the bipotential solver,
-  // whose scaled residual has no scale there).
-  if (pb.q0.isZero(0.0)) {
-    ContactSolution zero;
-    zero.Rbar = zero.y = zero.u = Eigen::VectorXd::Zero(m);
-    zero.status.assign(pb.size(), Status::Separated);
-    zero.converged = true;
-    return zero;
-  }
-  RCCM_VERIFY(pb.layout.dim == 2 || pb.layout.dim == 3, "contact pairs of 2 or 3 components");
   return pb.layout.dim == 2 ? solve_in<2>(pb, Rbar_start, u_start) : solve_in<3>(pb, Rbar_start, u_start);
 }
 

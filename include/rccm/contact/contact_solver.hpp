@@ -16,12 +16,18 @@ class ContactSolver {
 
   /// Solves `pb` starting from a nearby solution's (Rbar, u) (empty vectors: from zero).
   /// Never throws for non-convergence: check `converged` (and `worst_node`). Throws SolveError
-  /// when a pair has no stiffness left (an unrestrained structure).
-  virtual ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
-                                const Eigen::VectorXd& u_start) = 0;
+  /// when a pair has no stiffness left (an unrestrained structure). Without load (q0 = 0, e.g.
+  /// t = 0) the solution is exactly zero, without iterating: from a warm start Rbar would
+  /// shrink geometrically while its relative change stays constant.
+  ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start, const Eigen::VectorXd& u_start);
 
   /// For the message of a solve that did not converge: what to change.
   virtual std::string failure_advice() const = 0;
+
+ protected:
+  /// The solve of a loaded problem of pairs of 2 or 3 components, sizes checked.
+  virtual ContactSolution solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                                       const Eigen::VectorXd& u_start) = 0;
 };
 
 /// The contact solver the config asks for (solver.method and its settings).

@@ -18,11 +18,11 @@ class RccmSolver final : public ContactSolver {
  public:
   explicit RccmSolver(const SolverParams& params) : params_(params) {}
 
-  ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
-                        const Eigen::VectorXd& u_start) override;
   std::string failure_advice() const override;
 
  private:
+  ContactSolution solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
+                               const Eigen::VectorXd& u_start) override;
   template <int dim>
   class Iteration;
   template <int dim>
