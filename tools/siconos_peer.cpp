@@ -16,7 +16,9 @@ extern "C" {
 #include <siconos/numerics/NonSmoothDrivers.h>
 #include <siconos/numerics/NumericsMatrix.h>
 #include <siconos/numerics/SolverOptions.h>
+#include <siconos/numerics/SparseBlockMatrix.h>
 #include <siconos/numerics/fc2d_compute_error.h>
+#include <suitesparse/cs.h>  // the layout of Siconos' CSparseMatrix (cs_dl with SICONOS_INT64)
 }
 #undef restrict
 
@@ -40,12 +42,32 @@ Eigen::MatrixXd swap_pairs(const Eigen::MatrixXd& W) {
   return out;
 }
 
-/// A Siconos problem owning dense copies of the data (normal first).
+/// W in Siconos' storage, normal first: dense, or sparse by 2 x 2 blocks (its fc2d NSGS for
+/// sparse problems, fc2d_nsgs_sbm; its driver aborts on compressed-column storage).
+NumericsMatrix* to_siconos(const DelassusOperator& W) {
+  const int n = static_cast<int>(W.size());
+  if (const Eigen::MatrixXd* dense = W.dense()) {
+    NumericsMatrix* M = NM_create(NM_DENSE, n, n);
+    const Eigen::MatrixXd Ws = swap_pairs(*dense);
+    std::memcpy(M->matrix0, Ws.data(), sizeof(double) * n * n);
+    return M;
+  }
+  const Eigen::SparseMatrix<double>& S = dynamic_cast<const SparseDelassus&>(W).matrix();
+  NumericsMatrix* T = NM_create(NM_SPARSE, n, n);
+  NM_triplet_alloc(T, S.nonZeros());
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(S, j); it; ++it) NM_entry(T, int(it.row()) ^ 1, j ^ 1, it.value());
+  NumericsMatrix* M = NM_create(NM_SPARSE_BLOCK, n, n);
+  const int failed = SBM_from_csparse(2, NM_csc(T), M->matrix1);
+  NM_free(T);
+  if (failed) throw InputError("Siconos cannot store this W by 2 x 2 blocks");
+  return M;
+}
+
+/// A Siconos problem owning copies of the data (normal first).
 FrictionContactProblem* to_siconos(const PlainContactProblem& p) {
   const int n = static_cast<int>(p.q.size()), nc = n / 2;
-  NumericsMatrix* M = NM_create(NM_DENSE, n, n);
-  const Eigen::MatrixXd W = swap_pairs(*p.W.dense());
-  std::memcpy(M->matrix0, W.data(), sizeof(double) * n * n);
+  NumericsMatrix* M = to_siconos(*p.W);
   auto* q = static_cast<double*>(std::malloc(sizeof(double) * n));
   auto* mu = static_cast<double*>(std::malloc(sizeof(double) * nc));
   const Eigen::VectorXd qs = swap_pairs(p.q);
@@ -72,10 +94,22 @@ PlainContactProblem read_dat(const std::string& path) {
     throw InputError(path + ": not a 2D frictional contact problem in Siconos' .dat format");
   const int n = 2 * fc->numberOfContacts;
   PlainContactProblem p;
-  Eigen::MatrixXd W(n, n);
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) W(i, j) = NM_get_value(fc->M, i, j);
-  p.W = DenseDelassus(swap_pairs(W));
+  if (fc->M->storageType == NM_SPARSE) {  // kept sparse: W is never densified for our solvers
+    const CSparseMatrix* csc = NM_csc(fc->M);
+    std::vector<Eigen::Triplet<double>> entries;
+    entries.reserve(csc->p[n]);
+    for (long j = 0; j < n; ++j)
+      for (long k = csc->p[j]; k < csc->p[j + 1]; ++k)  // (n, t) -> (t, n): index ^ 1
+        entries.emplace_back(int(csc->i[k] ^ 1), int(j ^ 1), csc->x[k]);
+    Eigen::SparseMatrix<double> W(n, n);
+    W.setFromTriplets(entries.begin(), entries.end());
+    p.W = std::make_shared<SparseDelassus>(std::move(W));
+  } else {
+    Eigen::MatrixXd W(n, n);
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) W(i, j) = NM_get_value(fc->M, i, j);
+    p.W = std::make_shared<DenseDelassus>(swap_pairs(W));
+  }
   p.q = swap_pairs(Eigen::Map<const Eigen::VectorXd>(fc->q, n).eval());
   p.mu = Eigen::Map<const Eigen::VectorXd>(fc->mu, fc->numberOfContacts);
   frictionContactProblem_free(fc);
@@ -104,7 +138,9 @@ PeerSolution solve(const PlainContactProblem& p, const std::string& solver, doub
 double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
   FrictionContactProblem* fc = to_siconos(p);
   Eigen::VectorXd z = swap_pairs(R);
-  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(*p.W.dense() * R + p.q));
+  Eigen::VectorXd WR(R.size());
+  p.W->multiply(R, WR);
+  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(WR + p.q));
   double e = 0;
   fc2d_compute_error(fc, z.data(), w.data(), 1e-300, std::max(p.q.norm(), 1e-300), &e);
   frictionContactProblem_free(fc);

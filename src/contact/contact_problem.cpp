@@ -58,7 +58,8 @@ PlainContactProblem plain_form(const ContactProblem& pb) {
   const Eigen::VectorXd E = pb.D1 - pb.Dbeta;
   const Eigen::PartialPivLU<Eigen::MatrixXd> A(Eigen::MatrixXd::Identity(m, m) - (*W0) * E.asDiagonal());
   const Eigen::MatrixXd W = A.solve(*W0);
-  PlainContactProblem p{pb.layout.dim, DenseDelassus(0.5 * (W + W.transpose())), A.solve(pb.q0), pb.mubar};
+  PlainContactProblem p{pb.layout.dim, std::make_shared<DenseDelassus>(0.5 * (W + W.transpose())), A.solve(pb.q0),
+                        pb.mubar};
   for (int i = 0; i < pb.size(); ++i) {
     pb.layout.tangential(p.q, i) -= pb.layout.tangential(pb.u_ref, i);
     p.q[pb.layout.normal(i)] += pb.g0[i];
@@ -70,7 +71,7 @@ ContactProblem from_plain(const PlainContactProblem& plain) {
   ContactProblem pb;
   const Eigen::Index n = plain.mu.size();
   pb.layout.dim = plain.dim;
-  pb.W0 = &plain.W;
+  pb.W0 = plain.W.get();
   pb.q0 = plain.q;
   pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(plain.dim * n);
   pb.mubar = plain.mu;

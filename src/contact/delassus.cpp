@@ -10,4 +10,26 @@ void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eige
   u.noalias() += W_.middleCols(first, dy.size()) * dy;
 }
 
+SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W)) {
+  W_.makeCompressed();
+  diagonal_scale_ = W_.rows() > 0 ? W_.diagonal().cwiseAbs().maxCoeff() : 0.0;
+}
+
+void SparseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
+  u.noalias() = W_ * y;
+}
+
+void SparseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
+  for (Eigen::Index k = 0; k < dy.size(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(W_, first + k); it; ++it) u[it.row()] += it.value() * dy[k];
+}
+
+LocalMatrix SparseDelassus::block(Eigen::Index first, int n) const {
+  LocalMatrix B = LocalMatrix::Zero(n, n);
+  for (int j = 0; j < n; ++j)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(W_, first + j); it; ++it)
+      if (it.row() >= first && it.row() < first + n) B(it.row() - first, j) = it.value();
+  return B;
+}
+
 }  // namespace rccm

@@ -92,7 +92,7 @@ class RccmSolver::Iteration {
       // Normal: relaxed step, projection on the gap g = g0 + u_n >= 0 (eq. 4).
       if (b.inv_Kn > 0) move(n, std::max(-pb_.g0[i], s.u[n] - omega * b.inv_Kn * s.Rbar[n]) - s.u[n]);
       // Tangential: the minimizer of the quadratic model plus s_i |du_t| (a shrinkage of the
-      // slip towards 0 by s_i / K_tt), relaxed (eq. 5).
+      // slip towards 0 by s_i / k_t, k_t = lambda_max(K_tt)), relaxed (eq. 5).
       if (b.inv_Kt > 0) {
         const TangentVec slip = s.u.template segment<dim - 1>(o) + shift.template head<dim - 1>() -
                                 b.inv_Kt * s.Rbar.template segment<dim - 1>(o);
@@ -164,7 +164,7 @@ class RccmSolver::Iteration {
 
 const Eigen::MatrixXd& RccmSolver::stiffness(const ContactProblem& pb) {
   const Eigen::MatrixXd* W0 = pb.W0->dense();
-  RCCM_VERIFY(W0 != nullptr, "the rccm solver inverts W0: it needs the dense W0");
+  if (!W0) throw SolveError("the rccm solver inverts W0 and needs it dense; this W0 is sparse: use solver.method = \"bipotential\"");
   if (W0_.rows() == W0->rows() && W0_ == *W0) return Kc_;
   // A prescribed component (its row and column of W0 zero) gets a unit flexibility of its
   // own: the inverse exists, and the sweeps never move that component.

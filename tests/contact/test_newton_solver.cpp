@@ -277,7 +277,7 @@ void require_same_run(const std::string& config, const std::vector<std::string>&
 
 TEST_CASE("B1 and B2 with solver.method = newton: the bipotential solver's beta and Rbar", "[newton-solver]") {
   // Bounds from the runs' own sensitivity: the bipotential solver against itself at
-  // solver.tolerance 1e-13 instead of 1e-10 differs as much (measured, docs/solvers/newton.md s7).
+  // solver.tolerance 1e-13 instead of 1e-10 differs as much (measured; the numbers in each section).
   SECTION("B1, Euler-210: the contact solves to the tolerance, beta to round-off") {
     // measured: beta 6e-16, 1e-15, 3e-14; Rbar 5e-15, 5e-15, 2e-13 (relative)
     require_same_run("b1.cfg", {"integrator.method=euler"}, {1e-12, 1e-12, 1e-11}, {1e-10, 1e-10, 1e-10});

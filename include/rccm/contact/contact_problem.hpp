@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace rccm {
@@ -38,8 +39,9 @@ struct ContactSolution {
   Eigen::VectorXd u;     // interface displacement, mm
   Eigen::VectorXd y;     // Rbar + E u
   std::vector<Status> status;
-  int iterations = 0;    // sweeps (predictor-corrector passes over all pairs)
-  int exact_solves = 0;  // active-set linear solves
+  int iterations = 0;    // the solver's contact iterations: sweeps over all pairs (bipotential,
+                         // rccm), Newton steps and fallback sweeps (newton)
+  int exact_solves = 0;  // linear solves: exact active-set steps (bipotential), Newton directions
   double residual = 0;   // largest scaled natural-map residual
   int worst_node = -1;   // pair of that residual
   bool converged = false;
@@ -67,11 +69,11 @@ ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s);
 /// The same problem with the springs folded in and the gap and slip shifts in q:
 ///   v = W R + q,  v = (u_t - u_ref,t, g0 + u_n),  W = (I - W0 E)^-1 W0,  q = (I - W0 E)^-1 q0 + shifts,
 /// a plain frictional contact problem (W, q, mu) as Siconos and FCLIB pose it (docs/MODEL.md s4),
-/// in the local order (tangential, normal). Dense: for checking against a peer, not for
-/// production solves.
+/// in the local order (tangential, normal). plain_form builds it dense (for checking against
+/// a peer, not for production solves); a problem read from a file keeps the file's storage.
 struct PlainContactProblem {
   int dim = 2;
-  DenseDelassus W{Eigen::MatrixXd()};
+  std::shared_ptr<const DelassusOperator> W;
   Eigen::VectorXd q, mu;
 };
 PlainContactProblem plain_form(const ContactProblem& pb);

@@ -6,6 +6,7 @@
 #include "rccm/interface/layout.hpp"
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 
 namespace rccm {
 
@@ -46,6 +47,25 @@ class DenseDelassus final : public DelassusOperator {
 
  private:
   Eigen::MatrixXd W_;
+};
+
+/// W0 stored as a sparse matrix (memory and products proportional to its nonzeros): the
+/// Delassus operator of a multibody problem, whose contacts each couple a few bodies
+/// (Siconos' granular flows). Only the Gauss-Seidel sweeps can use it: the exact active-set
+/// step, rccm and newton need the dense W0.
+class SparseDelassus final : public DelassusOperator {
+ public:
+  explicit SparseDelassus(Eigen::SparseMatrix<double> W);
+  Eigen::Index size() const override { return W_.rows(); }
+  void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
+  void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
+  LocalMatrix block(Eigen::Index first, int n) const override;
+  double diagonal_scale() const override { return diagonal_scale_; }
+  const Eigen::SparseMatrix<double>& matrix() const { return W_; }
+
+ private:
+  Eigen::SparseMatrix<double> W_;  // compressed columns: add_response reads columns
+  double diagonal_scale_;
 };
 
 }  // namespace rccm

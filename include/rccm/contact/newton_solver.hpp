@@ -5,8 +5,8 @@
 // Newton direction fails (Alart and Curnier 1991; Christensen, Klarbring, Pang and Stromberg
 // 1998; Acary, Bremond and Huber 2018).
 //
-// `iterations` counts Newton steps and fallback sweeps, `exact_solves` the linear solves with
-// the Jacobian; the solve stops on the bipotential solver's scaled natural-map residual
+// `iterations` counts Newton steps (a step whose direction fails included) and fallback
+// sweeps, `exact_solves` the linear solves with the Jacobian, rejected directions included; the solve stops on the bipotential solver's scaled natural-map residual
 // (solver.tolerance), so that the two agree to it. Needs a dense W0.
 //
 // In 2D F is piecewise affine and a Newton step solves the linear problem of the pairs'

@@ -1,7 +1,7 @@
 // The classical RCCM contact algorithm at fixed beta (docs/solvers/rccm.md), the one of
 // Raous, Cangemi and Cocou (1999) in GYPTIS90 that the paper's Tables 1-2 compare with:
 // Coulomb friction by a fixed point on the sliding threshold, each step a Tresca problem
-// (threshold s_i = mubar_i Rbar_n,i of the previous one) solved by Gauss-Seidel with
+// (threshold s_i = mubar_i max(Rbar_n,i, 0) of the previous one) solved by Gauss-Seidel with
 // projection and over-relaxation (PSOR) on the interface displacements, with the stiffness
 // condensed on the interface and the adhesive springs beta^2 C on its diagonal. No exact
 // active-set step: it is the reference the bipotential solver is measured against.
