@@ -7,7 +7,7 @@ void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::
 }
 
 void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
-  u.noalias() += W_.middleCols(first, dy.size()) * dy;
+  for (Eigen::Index k = 0; k < dy.size(); ++k) u += W_.col(first + k) * dy[k];  // 2-3 columns: axpy, not gemv
 }
 
 SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W)) {

@@ -123,12 +123,16 @@ Status solve_pair(const PairBlock<dim>& b, const typename PairBlock<dim>::Vec& c
   return iterate_pair(b, c, R, max_steps, relative, force, noise);
 }
 
+double force_level(const ContactProblem& pb, const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u) {
+  return std::max({Rbar.cwiseAbs().maxCoeff(), pb.Dbeta.cwiseProduct(u).cwiseAbs().maxCoeff(), 1e-300});
+}
+
 template <int dim>
 Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks,
                          const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u, double floor) {
   using Vec = typename PairBlock<dim>::Vec;
   const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(u);
-  const double F = std::max({Rbar.cwiseAbs().maxCoeff(), Radh.cwiseAbs().maxCoeff(), 1e-300});
+  const double F = force_level(pb, Rbar, u);
   Verification v;
   v.branch.assign(pb.size(), Status::Separated);
   v.projected = Eigen::VectorXd::Zero(Rbar.size());

@@ -69,6 +69,10 @@ struct Verification {
   Eigen::VectorXd projected;  // in the cone by construction: a converged solve's Rbar
   double force_scale = 0;     // max(|Rbar|, |Radh|, floor)
 };
+/// The problem's force level: the largest |Rbar| or |Radh| = |D(beta) u| component (at least
+/// 1e-300), the scale of the verifying pass and of a sweep's change of Rbar.
+double force_level(const ContactProblem& pb, const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u);
+
 template <int dim>
 Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks,
                          const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u, double floor);

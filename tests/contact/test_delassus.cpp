@@ -1,0 +1,121 @@
+// The Delassus operators (contact/delassus): the sparse W0 is the same operator as the dense
+// one, and the bipotential solver gives the same solution on either; the solvers that need
+// the dense W0 say so.
+#include "rccm/contact/contact_solver.hpp"
+#include "rccm/base/errors.hpp"
+#include "random_problem.hpp"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <random>
+
+using namespace rccm;
+
+namespace {
+
+/// A multibody-like Delassus matrix W = G M^-1 G^T of n 2D contacts between `bodies` rigid
+/// bodies (3 degrees of freedom each), every contact touching two of them: sparse (a contact
+/// couples only with the contacts of its two bodies) and positive semi-definite, plus a small
+/// compliance so that it is definite.
+Eigen::SparseMatrix<double> multibody_W(int n, int bodies, std::mt19937& gen) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  std::uniform_int_distribution<int> body(0, bodies - 1);
+  std::vector<Eigen::Triplet<double>> g;
+  for (int c = 0; c < n; ++c) {
+    const int a = body(gen);
+    int b = body(gen);
+    if (b == a) b = (a + 1) % bodies;
+    for (int k = 0; k < 2; ++k)
+      for (int d = 0; d < 3; ++d) {
+        g.emplace_back(2 * c + k, 3 * a + d, U(gen));
+        g.emplace_back(2 * c + k, 3 * b + d, U(gen));
+      }
+  }
+  Eigen::SparseMatrix<double> G(2 * n, 3 * bodies);
+  G.setFromTriplets(g.begin(), g.end());
+  Eigen::SparseMatrix<double> I(2 * n, 2 * n);
+  I.setIdentity();
+  return Eigen::SparseMatrix<double>(G * G.transpose()) + 0.05 * I;
+}
+
+}  // namespace
+
+TEST_CASE("Sparse and dense W0 are the same operator", "[delassus]") {
+  std::mt19937 gen(11);
+  const Eigen::SparseMatrix<double> S = multibody_W(40, 25, gen);
+  const SparseDelassus sparse(S);
+  const DenseDelassus dense{Eigen::MatrixXd(S)};
+  REQUIRE(S.nonZeros() < S.rows() * S.cols() / 4);  // it is sparse
+  CHECK(sparse.size() == dense.size());
+  CHECK(sparse.diagonal_scale() == dense.diagonal_scale());
+  CHECK(sparse.dense() == nullptr);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Eigen::VectorXd y = Eigen::VectorXd::NullaryExpr(S.rows(), [&]() { return U(gen); });
+  Eigen::VectorXd us(S.rows()), ud(S.rows());
+  sparse.multiply(y, us);
+  dense.multiply(y, ud);
+  CHECK((us - ud).norm() <= 1e-14 * ud.norm());
+  for (Eigen::Index first : {Eigen::Index(0), Eigen::Index(14), S.rows() - 2}) {
+    CHECK((sparse.block(first, 2) - dense.block(first, 2)).norm() == 0.0);
+    LocalVector dy(2);
+    dy << U(gen), U(gen);
+    sparse.add_response(first, dy, us);
+    dense.add_response(first, dy, ud);
+    CHECK((us - ud).norm() <= 1e-14 * ud.norm());
+  }
+}
+
+TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the dense one", "[delassus]") {
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
+  for (bool springs : {false, true}) {
+    const int n = 60, m = 2 * n;
+    const SparseDelassus sparse(multibody_W(n, 30, gen));
+    const DenseDelassus dense{Eigen::MatrixXd(sparse.matrix())};
+    ContactProblem pb;
+    pb.layout.dim = 2;
+    pb.q0 = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
+    pb.mubar = Eigen::VectorXd::NullaryExpr(n, [&]() { return 0.6 * P(gen); });
+    pb.g0 = Eigen::VectorXd::Zero(n);
+    pb.u_ref = Eigen::VectorXd::NullaryExpr(m, [&]() { return 0.05 * U(gen); });
+    pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(m);
+    if (springs) {  // springs softer than W0's pairs (I - W0_ii E invertible), D(beta) <= D1
+      const double k = 0.2 / sparse.diagonal_scale();
+      pb.D1 = Eigen::VectorXd::Constant(m, k);
+      for (int i = 0; i < n; ++i) pb.Dbeta.segment(2 * i, 2).setConstant(k * P(gen));
+    }
+    SolverParams params;
+    params.tolerance = 1e-12;
+    params.max_iterations = 20000;
+    ContactProblem on_dense = pb, on_sparse = pb;
+    on_dense.W0 = &dense;
+    on_sparse.W0 = &sparse;
+    const ContactSolution d = make_contact_solver(params)->solve(on_dense, {}, {});
+    const ContactSolution s = make_contact_solver(params)->solve(on_sparse, {}, {});
+    INFO("springs " << springs << ": dense " << d.iterations << " passes, sparse " << s.iterations);
+    REQUIRE(s.converged);
+    REQUIRE(d.converged);
+    testing::require_solution(on_sparse, s);
+    CHECK(s.exact_solves == 0);  // the exact step needs the dense W0: sweeps only
+    CHECK((s.Rbar - d.Rbar).norm() <= 1e-9 * (1 + d.Rbar.norm()));
+    CHECK((s.u - d.u).norm() <= 1e-9 * (1 + d.u.norm()));
+  }
+}
+
+TEST_CASE("rccm and newton need the dense W0 and say so", "[delassus]") {
+  std::mt19937 gen(2);
+  const SparseDelassus sparse(multibody_W(10, 8, gen));
+  ContactProblem pb;
+  pb.layout.dim = 2;
+  pb.W0 = &sparse;
+  pb.q0 = -Eigen::VectorXd::Ones(20);
+  pb.mubar = Eigen::VectorXd::Constant(10, 0.3);
+  pb.g0 = Eigen::VectorXd::Zero(10);
+  pb.u_ref = pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(20);
+  for (ContactMethod method : {ContactMethod::Rccm, ContactMethod::Newton}) {
+    SolverParams params;
+    params.method = method;
+    CHECK_THROWS_AS(make_contact_solver(params)->solve(pb, {}, {}), SolveError);
+  }
+}
