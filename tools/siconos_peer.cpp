@@ -150,14 +150,16 @@ double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
 std::vector<StepProblem> step_problems(const Model& model, const Config& cfg, int every) {
   std::vector<StepProblem> out;
   Eigen::VectorXd u_previous = Eigen::VectorXd::Zero(model.interface().layout.offset(model.contact_nodes()));
+  Eigen::VectorXd Rbar_previous;
   RunOptions options;
   options.observer = [&](const AcceptedStep& a) {
     if (a.step > 0 && a.step % every == 0) {
       // The problem this step solved at commit: (t, beta), slip from the previous accepted state.
       const ContactProblem pb = model.contact_problem(a.t, a.state.beta, u_previous);
-      out.push_back({a.step, a.t, pb, plain_form(pb)});
+      out.push_back({a.step, a.t, pb, Rbar_previous, u_previous, plain_form(pb)});
     }
     u_previous = a.state.u;
+    Rbar_previous = a.solution.Rbar;
   };
   Simulation(cfg, options).run();
   return out;

@@ -35,6 +35,7 @@ struct StepProblem {
   int step = 0;
   double t = 0;
   ContactProblem problem;       // as the run poses it (springs, gap, previous slip); points into the model
+  Eigen::VectorXd Rbar_before, u_before;  // the previous accepted step's solution: the run's warm start
   PlainContactProblem plain;    // the same in Siconos' plain form
 };
 
