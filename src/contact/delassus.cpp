@@ -16,7 +16,7 @@ SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W))
 }
 
 void SparseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
-  u.noalias() = W_ * y;
+  u = W_ * y;
 }
 
 void SparseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
