@@ -6,8 +6,9 @@
 // 1998; Acary, Bremond and Huber 2018).
 //
 // `iterations` counts Newton steps (a step whose direction fails included) and fallback
-// sweeps, `exact_solves` the linear solves with the Jacobian, rejected directions included; the solve stops on the bipotential solver's scaled natural-map residual
-// (solver.tolerance), so that the two agree to it. Needs a dense W0.
+// sweeps, `exact_solves` the linear solves with the Jacobian (rejected directions included);
+// the solve stops on the bipotential solver's scaled natural-map residual (solver.tolerance),
+// so that the two agree to it. Needs a dense W0.
 //
 // In 2D F is piecewise affine and a Newton step solves the linear problem of the pairs'
 // cases, the exact step's system (active_set.hpp), which keeps its factorization from one
