@@ -155,8 +155,6 @@ void warm_row(const std::string& name, const peer::StepProblem& sp, double sicon
       siconos_seconds / seconds, s.converged);
 }
 
-}  // namespace
-
 /// K independent copies of a sparse problem in one: W block-diagonal, q and mu repeated.
 PlainContactProblem copies(const PlainContactProblem& p, int K) {
   const auto* sparse = dynamic_cast<const SparseDelassus*>(p.W.get());
@@ -174,9 +172,11 @@ PlainContactProblem copies(const PlainContactProblem& p, int K) {
   return {p.dim, std::make_shared<SparseDelassus>(std::move(WK)), p.q.replicate(K, 1), p.mu.replicate(K, 1)};
 }
 
+}  // namespace
+
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: fc2d-bench [--benchmarks CONFIG_DIR] [FILE.dat...]\n";
+    std::cerr << "usage: fc2d-bench [--benchmarks CONFIG_DIR] [--copies K] [FILE.dat...]\n";
     return 2;
   }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a line per solver, even when interrupted

@@ -79,7 +79,7 @@ class BipotentialSolver::Iteration {
   void sweep() {
     const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
     const double noise = noise_floor();
-    const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
+    const double F_old = force_level(pb_, s.Rbar, s.u);
     Eigen::VectorXd y_new;  // the Jacobi form's next y
     if (!gauss_seidel) y_new = s.y;
     for (int i = 0; i < pb_.size(); ++i) {

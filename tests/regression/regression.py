@@ -101,9 +101,9 @@ def compare(name, kind, ref_text, new_text, largest):
     if kind != "fixed" and len(ref_rows) != len(new_rows):
         return ["%s: %d lines, expected %d" % (name, len(new_rows), len(ref_rows))]
     unit_scale = {}  # the largest magnitude in the file per unit ("[mm]", "[N]", ...)
-    for c in ref_head:
-        values = [abs(numeric(r[ref_head.index(c)]) or 0.0) for r in ref_rows]
-        if unit_of(c) and not any(s in c for s in SKIP):
+    for i, c in enumerate(ref_head):
+        if kind == "fixed" and unit_of(c) and not any(s in c for s in SKIP):
+            values = [abs(numeric(r[i]) or 0.0) for r in ref_rows]
             unit_scale[unit_of(c)] = max([unit_scale.get(unit_of(c), 0.0)] + values)
     for c in columns:
         if c not in new_head:
