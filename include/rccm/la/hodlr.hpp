@@ -1,0 +1,60 @@
+// Hierarchically off-diagonal low-rank (HODLR) matrices and their direct solver
+// (Ambikasaran and Darve, J. Sci. Comput. 57, 2013): the index range is bisected recursively
+// down to small dense leaves, and each off-diagonal block of a bisection is kept as a
+// product U V^T of rank r. The flexibility W0 of an interface line is such a matrix: its
+// off-diagonal blocks have rank 15-20 at 1e-14 of |W0| on the refined B1 family
+// (docs/PERFORMANCE.md), so that a solve with the exact step's matrix costs about
+// m r log m instead of m^2, and a factorization m r^2 log^2 m instead of m^3.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/LU>
+
+#include <memory>
+
+namespace rccm {
+
+class HodlrMatrix {
+ public:
+  /// Compresses the square matrix A: leaves of at most `leaf_size` rows, bisections at
+  /// multiples of `granule` (a contact pair's rows stay in one block), off-diagonal blocks
+  /// to an absolute accuracy of `tolerance` (a randomized range finder, deterministic seed).
+  HodlrMatrix(const Eigen::MatrixXd& A, double tolerance, int leaf_size, int granule);
+  ~HodlrMatrix();
+  HodlrMatrix(HodlrMatrix&&) noexcept;
+  HodlrMatrix& operator=(HodlrMatrix&&) noexcept;
+
+  Eigen::Index size() const { return size_; }
+  /// y = A x.
+  Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
+  /// The largest rank of an off-diagonal block, and the doubles stored.
+  int max_rank() const;
+  Eigen::Index stored() const;
+
+  struct Node;  // a diagonal block: a dense leaf, or two children and the blocks between them
+
+ private:
+  friend class HodlrSolver;
+  std::unique_ptr<Node> root_;
+  Eigen::Index size_ = 0;
+};
+
+/// The factorization of a HodlrMatrix: dense LU at the leaves, and at each bisection the
+/// Sherman-Morrison-Woodbury formula for the two off-diagonal blocks.
+class HodlrSolver {
+ public:
+  explicit HodlrSolver(const HodlrMatrix& A);
+  ~HodlrSolver();
+  HodlrSolver(HodlrSolver&&) noexcept;
+  HodlrSolver& operator=(HodlrSolver&&) noexcept;
+
+  /// A^-1 B (B's columns); not finite when A (or one of its diagonal blocks) is singular.
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
+
+  struct Node;
+
+ private:
+  std::unique_ptr<Node> root_;
+};
+
+}  // namespace rccm

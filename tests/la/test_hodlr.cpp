@@ -1,0 +1,84 @@
+#include "rccm/la/hodlr.hpp"
+
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+using namespace rccm;
+
+namespace {
+
+/// A smooth kernel on points of a line, plus a diagonal: the off-diagonal blocks have a
+/// rapidly decaying spectrum, like the flexibility of an interface line.
+Eigen::MatrixXd kernel_matrix(int m) {
+  Eigen::MatrixXd A(m, m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + 20.0 * std::abs(i - j) / m);
+  A.diagonal().array() += 2.0;
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("HODLR: products and solves agree with the dense matrix to the compression tolerance", "[hodlr]") {
+  const int m = 600;
+  const Eigen::MatrixXd A = kernel_matrix(m);
+  const double tolerance = 1e-12 * A.norm();
+  const HodlrMatrix H(A, tolerance, 32, 2);
+  REQUIRE(H.size() == m);
+  // Compressed: the off-diagonal ranks stay far below the block sizes, the storage below m^2 / 3.
+  CHECK(H.max_rank() <= 40);
+  CHECK(H.stored() < m * m / 3);
+
+  std::srand(3);
+  const Eigen::VectorXd x = Eigen::VectorXd::Random(m);
+  CHECK((H.multiply(x) - A * x).norm() <= 10 * tolerance * x.norm());
+
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(m, 3);
+  const Eigen::MatrixXd X = HodlrSolver(H).solve(B);
+  const Eigen::MatrixXd X_dense = A.partialPivLu().solve(B);
+  CHECK((X - X_dense).norm() <= 1e-9 * X_dense.norm());
+  CHECK((A * X - B).norm() <= 1e-10 * B.norm());
+}
+
+TEST_CASE("HODLR: exact on a matrix whose off-diagonal blocks have rank one", "[hodlr]") {
+  // A = diag(d) + u v^T: every off-diagonal block has rank one.
+  const int m = 256;
+  std::srand(5);
+  const Eigen::VectorXd u = Eigen::VectorXd::Random(m), v = Eigen::VectorXd::Random(m);
+  Eigen::MatrixXd A = u * v.transpose();
+  A.diagonal().array() += 3.0;
+  const HodlrMatrix H(A, 1e-13 * A.norm(), 16, 1);
+  CHECK(H.max_rank() == 1);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(m);
+  const Eigen::VectorXd x = HodlrSolver(H).solve(b);
+  CHECK((A * x - b).norm() <= 1e-12 * b.norm());
+}
+
+TEST_CASE("HODLR: rows mixed within pairs (the exact step's matrices) keep the ranks and solve", "[hodlr]") {
+  // C_y + C_w W with block-diagonal 2 x 2 C's, as the exact step's rows are (nonsymmetric).
+  const int m = 400;
+  const Eigen::MatrixXd W = kernel_matrix(m);
+  Eigen::MatrixXd Cw = Eigen::MatrixXd::Zero(m, m), Cy = Eigen::MatrixXd::Zero(m, m);
+  for (int i = 0; i < m / 2; ++i) {
+    const int f = 2 * i;
+    if (i % 3 == 0) Cw.block<2, 2>(f, f) << -0.5, 0.1, 0.0, -0.7, Cy.block<2, 2>(f, f).setIdentity();  // separated
+    else if (i % 3 == 1) Cw.block<2, 2>(f, f).setIdentity();                                              // stick
+    else Cw.block<2, 2>(f, f) << -0.3, 0.2 * 0.4, 0.0, 1.0, Cy.block<2, 2>(f, f) << 1.0, -0.2, 0.0, 0.0;  // slide
+  }
+  const Eigen::MatrixXd A = Cy + Cw * W;
+  const HodlrMatrix Hw(W, 1e-12 * W.norm(), 32, 2), H(A, 1e-12 * A.norm(), 32, 2);
+  CHECK(H.max_rank() <= Hw.max_rank() + 8);  // a left factor that is block diagonal adds no rank
+  std::srand(9);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(m);
+  const Eigen::VectorXd x = HodlrSolver(H).solve(b);
+  CHECK((A * x - b).norm() <= 1e-9 * b.norm());
+}
+
+TEST_CASE("HODLR: a singular diagonal block gives a solution that is not finite", "[hodlr]") {
+  Eigen::MatrixXd A = kernel_matrix(128);
+  A.row(5).setZero(), A.col(5).setZero();
+  const HodlrMatrix H(A, 1e-13 * A.norm(), 16, 1);
+  CHECK_FALSE(HodlrSolver(H).solve(Eigen::VectorXd::Ones(128)).allFinite());
+}
