@@ -68,7 +68,7 @@ std::string Config::fingerprint() const {
   h("solver.tolerance", solver.tolerance)("solver.max_iterations", solver.max_iterations);
   h("solver.local_iterations", solver.local_iterations)("solver.form", double(solver.form));
   h("solver.rho", double(solver.rho))("solver.relaxation", solver.relaxation)("solver.active_set", solver.active_set);
-  h("solver.active_set_max_nodes", solver.active_set_max_nodes);
+  h("solver.active_set_max_nodes", solver.active_set_max_nodes)("solver.compressed_min_nodes", solver.compressed_min_nodes);
   const IntegratorParams& A = integrator;
   h("integrator.method", double(A.method))("integrator.scheme", double(A.scheme))("integrator.table", A.table);
   h("integrator.rtol", A.rtol)("integrator.atol", A.atol)("integrator.max_step", A.max_step);

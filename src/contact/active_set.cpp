@@ -4,6 +4,7 @@
 #include "rccm/la/gmres.hpp"
 
 #include <cmath>
+#include <limits>
 
 namespace rccm {
 
@@ -45,28 +46,41 @@ Eigen::VectorXd ActiveSetSystem<dim>::residual(const ContactProblem& pb, const P
 }
 
 template <int dim>
+void ActiveSetSystem<dim>::mixing(const ContactProblem& pb, const PairRows& kind, int i, Local& Cw, Local& Cy) const {
+  const Eigen::Index first = Eigen::Index(dim) * i, n = dim - 1;
+  const auto E = [&](int k) { return pb.D1[first + k] - pb.Dbeta[first + k]; };
+  Cw.setZero(), Cy.setZero();
+  switch (kind.status) {
+    case Status::Separated:  // Rbar = y - E u
+      for (int k = 0; k < dim; ++k) Cw(k, k) = -E(k), Cy(k, k) = 1.0;
+      break;
+    case Status::Stick:  // u
+      Cw.setIdentity();
+      break;
+    case Status::Slide:  // Rbar_t - s Rbar_n, and u_n
+      for (int k = 0; k < dim - 1; ++k) {
+        const double s = kind.direction[k] * pb.mubar[i];
+        Cw(k, k) = -E(k), Cw(k, n) = s * E(n);
+        Cy(k, k) = 1.0, Cy(k, n) = -s;
+      }
+      Cw(n, n) = 1.0;
+  }
+}
+
+template <int dim>
 template <class Rows>
 void ActiveSetSystem<dim>::rows(const ContactProblem& pb, const PairRows& kind, int i, Rows&& out) const {
   const Eigen::MatrixXd& W = *pb.W0->dense();
-  const Eigen::Index first = Eigen::Index(dim) * i, n = first + dim - 1;
-  const auto E = [&](Eigen::Index c) { return pb.D1[c] - pb.Dbeta[c]; };
-  // Row c of W0 read as its column (W0 is symmetric: contiguous in memory). The row of Rbar_c
-  // as a function of y is e_c - E_c W0_c.
-  switch (kind.status) {
-    case Status::Separated:
-      for (int k = 0; k < dim; ++k) out.row(k) = -E(first + k) * W.col(first + k).transpose(), out(k, first + k) += 1.0;
-      break;
-    case Status::Stick:
-      for (int k = 0; k < dim; ++k) out.row(k) = W.col(first + k).transpose();
-      break;
-    case Status::Slide:
-      for (int k = 0; k < dim - 1; ++k) {
-        const double s = kind.direction[k] * pb.mubar[i];  // Rbar_t,k - s Rbar_n
-        out.row(k) = -E(first + k) * W.col(first + k).transpose() + s * E(n) * W.col(n).transpose();
-        out(k, first + k) += 1.0, out(k, n) -= s;
-      }
-      out.row(dim - 1) = W.col(n).transpose();
+  const Eigen::Index first = Eigen::Index(dim) * i;
+  Local Cw, Cy;
+  mixing(pb, kind, i, Cw, Cy);
+  // Row c of W0 read as its column (W0 is symmetric: contiguous in memory).
+  for (int k = 0; k < dim; ++k) {
+    out.row(k).setZero();
+    for (int j = 0; j < dim; ++j)
+      if (Cw(k, j) != 0) out.row(k) += Cw(k, j) * W.col(first + j).transpose();
   }
+  out.template middleCols<dim>(first) += Cy;
 }
 
 template <int dim>
@@ -86,13 +100,14 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
   std::vector<int> changed;
   for (int i = 0; i < pb.size(); ++i)
     if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], i)) changed.push_back(i);
-  const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = A0_.rows();
-  D_.resize(c, m);
+  const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = pb.W0->size();
+  D_.resize(hodlr_ ? 0 : c, m);
   if (c == 0) return true;
+  if (hodlr_) return false;  // a new compressed factorization costs less than a correction
   if (2 * c > m) return false;  // a new factorization costs less
   // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1
   // (gathered from the inverse once there is one, c solves with the LU before).
-  if (++reuses_ >= 2) inverse();
+  if (!hodlr_ && ++reuses_ >= 2) inverse();
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(inverse_ready_ ? 0 : m, c);
   Z_.resize(m, c);
   for (std::size_t k = 0; k < changed.size(); ++k) {
@@ -105,7 +120,7 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
     else
       for (int d = 0; d < dim; ++d) S(first + d, row + d) = 1.0;
   }
-  if (!inverse_ready_) Z_ = lu_.solve(S);
+  if (!inverse_ready_) Z_ = solve_A0(S);
   capacitance_.compute(Eigen::MatrixXd::Identity(c, c) + D_ * Z_);
   // Pending while small (c^2 m per solve, c m per product); beyond m/8 rows folded into A0.
   if (c <= m / tuning::fold_fraction) return true;
@@ -126,9 +141,14 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
 
 template <int dim>
 Eigen::VectorXd ActiveSetSystem<dim>::apply_inverse(const Eigen::VectorXd& r) {
-  Eigen::VectorXd x = inverse_ready_ ? Eigen::VectorXd(A0_inverse_ * r) : Eigen::VectorXd(lu_.solve(r));
+  Eigen::VectorXd x = inverse_ready_ ? Eigen::VectorXd(A0_inverse_ * r) : Eigen::VectorXd(solve_A0(r));
   if (D_.rows() > 0) x -= Z_ * capacitance_.solve(D_ * x);
   return x;
+}
+
+template <int dim>
+Eigen::MatrixXd ActiveSetSystem<dim>::solve_A0(const Eigen::MatrixXd& B) const {
+  return hodlr_ ? hodlr_->solve(B) : Eigen::MatrixXd(lu_.solve(B));
 }
 
 template <int dim>
@@ -140,74 +160,101 @@ const Eigen::MatrixXd& ActiveSetSystem<dim>::inverse() {
 
 template <int dim>
 void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pattern) {
-  A0_.resize(pb.W0->size(), pb.W0->size());
-  for (int i = 0; i < pb.size(); ++i) rows(pb, pattern[i], i, A0_.template middleRows<dim>(Eigen::Index(dim) * i));
-  lu_.compute(A0_);
+  const Eigen::Index m = pb.W0->size();
+  hodlr_.reset();
+  if (pb.size() >= compressed_min_nodes_) {
+    const Eigen::MatrixXd& W0 = *pb.W0->dense();
+    if (compressed_from_ != pb.W0 || W0_compressed_->size() != m || compressed_trace_ != W0.trace()) {
+      const double tolerance = tuning::hodlr_accuracy * pb.W0->diagonal_scale();
+      W0_compressed_.emplace(W0, tolerance, tuning::hodlr_leaf, dim);
+      compressed_from_ = pb.W0, compressed_trace_ = W0.trace();
+    }
+    Eigen::MatrixXd Cw(dim, m), Cy(dim, m);
+    for (int i = 0; i < pb.size(); ++i) {
+      Local w, y;
+      mixing(pb, pattern[i], i, w, y);
+      Cw.template middleCols<dim>(Eigen::Index(dim) * i) = w, Cy.template middleCols<dim>(Eigen::Index(dim) * i) = y;
+    }
+    hodlr_.emplace(W0_compressed_->rows_mixed(Cw, Cy));
+    A0_.resize(0, 0);
+  } else {
+    A0_.resize(m, m);
+    for (int i = 0; i < pb.size(); ++i) rows(pb, pattern[i], i, A0_.template middleRows<dim>(Eigen::Index(dim) * i));
+    lu_.compute(A0_);
+  }
   inverse_ready_ = false;
   reuses_ = 0;
   factorized_ = pattern;
   E0_ = pb.D1 - pb.Dbeta;
   mubar0_ = pb.mubar;
-  D_.resize(0, A0_.rows());
+  D_.resize(0, m);
+}
+
+template <int dim>
+bool ActiveSetSystem<dim>::refine(const ContactProblem& pb, const Pattern& pattern, Eigen::VectorXd& r,
+                                  Eigen::VectorXd& y, Eigen::VectorXd& u) {
+  const DelassusOperator& W = *pb.W0;
+  const double r0 = r.norm();
+  // A correction is taken when it gains a factor 10 on the residual, or leaves y unmoved.
+  enum class Outcome { Converged, Progress, Stalled };
+  double previous = r0;
+  const auto take = [&](const Eigen::VectorXd& dy, const Eigen::VectorXd& du) {
+    const Eigen::VectorXd r_next = residual(pb, pattern, y + dy, u + du);
+    const double norm = r_next.norm();
+    const bool still = dy.norm() <= tuning::unmoved * y.norm();
+    if (!std::isfinite(norm) || (norm > tuning::refinement_gain * previous && !still)) return Outcome::Stalled;
+    y += dy, u += du, r = r_next, previous = norm;
+    return still || norm <= tuning::converged_residual * r0 ? Outcome::Converged : Outcome::Progress;
+  };
+  // Refinement with the corrected inverse: two products of W0's size per step.
+  Outcome outcome = Outcome::Progress;
+  for (int k = 0; k < tuning::refinement_steps && outcome == Outcome::Progress; ++k) {
+    const Eigen::VectorXd dy = apply_inverse(r);
+    Eigen::VectorXd du(dy.size());
+    W.multiply(dy, du);
+    outcome = take(dy, du);
+  }
+  // Stalled or slow (the inverse's round-off, or a drift it does not absorb): GMRES with the
+  // same preconditioner, before a new factorization. The products W0 M v it forms are kept, so
+  // that u follows y without one more product with W0.
+  if (outcome != Outcome::Converged) {
+    const int max_iterations = tuning::gmres_iterations;
+    Eigen::MatrixXd Wz(W.size(), max_iterations);
+    int products = 0;
+    const LinearMap A = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
+      W.multiply(z, Wz.col(products));
+      return constraint_values(pb, pattern, z, Wz.col(products++));
+    };
+    const LinearMap M = [&](const Eigen::VectorXd& v) { return apply_inverse(v); };
+    outcome = Outcome::Progress;
+    for (int pass = 0; pass < tuning::gmres_passes && outcome == Outcome::Progress; ++pass) {
+      products = 0;
+      const GmresResult g = gmres(A, M, r, tuning::gmres_tolerance, max_iterations);
+      outcome = g.iterations == 0 ? Outcome::Stalled : take(g.x, Wz.leftCols(g.iterations) * g.coefficients);
+    }
+  }
+  return outcome == Outcome::Converged;
 }
 
 template <int dim>
 bool ActiveSetSystem<dim>::solve(const ContactProblem& pb, const Pattern& pattern, Eigen::VectorXd& y,
                                  Eigen::VectorXd& u) {
-  const DelassusOperator& W = *pb.W0;
   Eigen::VectorXd r = residual(pb, pattern, y, u);
-  const double r0 = r.norm();
-  if (r0 == 0) return true;
-  if (factorized_.size() == pattern.size() && update(pb, pattern)) {
-    // A correction is taken when it gains a factor 10 on the residual, or leaves y unmoved.
-    enum class Outcome { Converged, Progress, Stalled };
-    double previous = r0;
-    const auto take = [&](const Eigen::VectorXd& dy, const Eigen::VectorXd& du) {
-      const Eigen::VectorXd r_next = residual(pb, pattern, y + dy, u + du);
-      const double norm = r_next.norm();
-      const bool still = dy.norm() <= tuning::unmoved * y.norm();
-      if (!std::isfinite(norm) || (norm > tuning::refinement_gain * previous && !still)) return Outcome::Stalled;
-      y += dy, u += du, r = r_next, previous = norm;
-      return still || norm <= tuning::converged_residual * r0 ? Outcome::Converged : Outcome::Progress;
-    };
-    // Refinement with the corrected inverse: two products of W0's size per step.
-    Outcome outcome = Outcome::Progress;
-    for (int k = 0; k < tuning::refinement_steps && outcome == Outcome::Progress; ++k) {
-      const Eigen::VectorXd dy = apply_inverse(r);
-      Eigen::VectorXd du(dy.size());
-      W.multiply(dy, du);
-      outcome = take(dy, du);
-    }
-    // Stalled or slow (the inverse's round-off, or a drift it does not absorb): GMRES with the
-    // same preconditioner, before a new factorization. The products W0 M v it forms are kept, so
-    // that u follows y without one more product with W0.
-    if (outcome != Outcome::Converged) {
-      const int max_iterations = tuning::gmres_iterations;
-      Eigen::MatrixXd Wz(W.size(), max_iterations);
-      int products = 0;
-      const LinearMap A = [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
-        W.multiply(z, Wz.col(products));
-        return constraint_values(pb, pattern, z, Wz.col(products++));
-      };
-      const LinearMap M = [&](const Eigen::VectorXd& v) { return apply_inverse(v); };
-      outcome = Outcome::Progress;
-      for (int pass = 0; pass < tuning::gmres_passes && outcome == Outcome::Progress; ++pass) {
-        products = 0;
-        const GmresResult g = gmres(A, M, r, tuning::gmres_tolerance, max_iterations);
-        outcome = g.iterations == 0 ? Outcome::Stalled : take(g.x, Wz.leftCols(g.iterations) * g.coefficients);
-      }
-    }
-    if (outcome == Outcome::Converged) return true;
-  }
+  if (r.norm() == 0) return true;
+  if (factorized_.size() == pattern.size() && update(pb, pattern) && refine(pb, pattern, r, y, u)) return true;
   factorize(pb, pattern);
-  const Eigen::VectorXd dy = lu_.solve(r);
+  const Eigen::VectorXd dy = solve_A0(r);
   if (!dy.allFinite()) {  // singular
     factorized_.clear();
     return false;
   }
   y += dy;
-  W.multiply(y, u);
+  pb.W0->multiply(y, u);
   u += pb.q0;
+  if (hodlr_) {  // the compressed factorization solved the rows to its accuracy: refined to the exact ones
+    r = residual(pb, pattern, y, u);
+    refine(pb, pattern, r, y, u);
+  }
   return true;
 }
 

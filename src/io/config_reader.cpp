@@ -594,7 +594,7 @@ SolverParams read_solver(const Reader& r, const Setting& root) {
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
   r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation",
-              "active_set", "active_set_max_nodes"});
+              "active_set", "active_set_max_nodes", "compressed_min_nodes"});
   S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
   S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
   if (s->exists("over_relaxation"))
@@ -615,6 +615,9 @@ SolverParams read_solver(const Reader& r, const Setting& root) {
   S.active_set_max_nodes = r.integer(*s, "active_set_max_nodes", S.active_set_max_nodes);
   if (s->exists("active_set_max_nodes"))
     r.check(S.active_set_max_nodes >= 0, (*s)["active_set_max_nodes"], "must be >= 0", S.active_set_max_nodes);
+  S.compressed_min_nodes = r.integer(*s, "compressed_min_nodes", S.compressed_min_nodes);
+  if (s->exists("compressed_min_nodes"))
+    r.check(S.compressed_min_nodes >= 0, (*s)["compressed_min_nodes"], "must be >= 0", S.compressed_min_nodes);
   return S;
 }
 

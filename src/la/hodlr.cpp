@@ -47,6 +47,10 @@ void compress(const Eigen::Ref<const Eigen::MatrixXd>& B, double tolerance, std:
     Q.conservativeResize(n1, Q.cols() + add);
     Q.rightCols(add) = basis;
   }
+  if (Q.cols() == 0) {  // B below the tolerance: rank zero
+    U.resize(n1, 0), V.resize(n2, 0);
+    return;
+  }
   const Eigen::MatrixXd Vq = B.transpose() * Q;  // B ~ Q Vq^T
   const Eigen::BDCSVD<Eigen::MatrixXd> svd(Vq, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
@@ -84,6 +88,29 @@ Eigen::VectorXd multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const E
   return y;
 }
 
+/// Rows [begin, begin + M.rows()) of blockdiag(C) M, C's blocks g x g side by side.
+Eigen::MatrixXd left_blocks(const Eigen::MatrixXd& C, Eigen::Index begin, const Eigen::MatrixXd& M, int g) {
+  Eigen::MatrixXd out(M.rows(), M.cols());
+  for (Eigen::Index r = 0; r < M.rows(); r += g) out.middleRows(r, g) = C.middleCols(begin + r, g) * M.middleRows(r, g);
+  return out;
+}
+
+std::unique_ptr<HodlrMatrix::Node> mixed(const HodlrMatrix::Node& a, const Eigen::MatrixXd& Cw,
+                                         const Eigen::MatrixXd& Cy, int g) {
+  auto node = std::make_unique<HodlrMatrix::Node>();
+  node->begin = a.begin, node->end = a.end;
+  if (a.leaf()) {
+    node->dense = left_blocks(Cw, a.begin, a.dense, g);
+    for (Eigen::Index r = 0; r < a.dense.rows(); r += g) node->dense.block(r, r, g, g) += Cy.middleCols(a.begin + r, g);
+    return node;
+  }
+  node->first = mixed(*a.first, Cw, Cy, g);
+  node->second = mixed(*a.second, Cw, Cy, g);
+  node->U12 = left_blocks(Cw, a.first->begin, a.U12, g), node->V12 = a.V12;
+  node->U21 = left_blocks(Cw, a.second->begin, a.U21, g), node->V21 = a.V21;
+  return node;
+}
+
 template <class F>
 void visit(const HodlrMatrix::Node& node, F&& f) {
   f(node);
@@ -95,7 +122,7 @@ void visit(const HodlrMatrix::Node& node, F&& f) {
 }  // namespace
 
 HodlrMatrix::HodlrMatrix(const Eigen::MatrixXd& A, double tolerance, int leaf_size, int granule)
-    : size_(A.rows()) {
+    : size_(A.rows()), granule_(granule) {
   std::mt19937 rng(20261125);
   root_ = build(A, 0, size_, tolerance, std::max(leaf_size, 2 * granule), granule, rng);
 }
@@ -105,6 +132,13 @@ HodlrMatrix::HodlrMatrix(HodlrMatrix&&) noexcept = default;
 HodlrMatrix& HodlrMatrix::operator=(HodlrMatrix&&) noexcept = default;
 
 Eigen::VectorXd HodlrMatrix::multiply(const Eigen::VectorXd& x) const { return rccm::multiply(*root_, x); }
+
+HodlrMatrix HodlrMatrix::rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const {
+  HodlrMatrix out;
+  out.size_ = size_, out.granule_ = granule_;
+  out.root_ = mixed(*root_, Cw, Cy, granule_);
+  return out;
+}
 
 int HodlrMatrix::max_rank() const {
   Eigen::Index r = 0;

@@ -95,10 +95,11 @@ Model::Model(const Config& cfg, Mesh mesh)
   mesh_.axisymmetric = cfg.hypothesis() == Hypothesis::Axisymmetric;
   materials_ = body_materials(cfg, mesh_);
   interface_ = make_interface(mesh_, cfg);
-  // The dense interface operators: W0 and the factor block it comes from, the exact step's
-  // matrix, its LU and its inverse, each (dim m)^2 doubles.
+  // The dense interface operators: W0 and the factor block it comes from, and below
+  // solver.compressed_min_nodes the exact step's matrix, its LU and its inverse, each (dim m)^2 doubles.
   const double m = interface_.layout.offset(interface_.size());
-  const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes;
+  const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes &&
+                     interface_.size() < cfg.solver.compressed_min_nodes;
   require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
                  std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
                  "use a coarser interface mesh, or solver.active_set_max_nodes below the contact node count");

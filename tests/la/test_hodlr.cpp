@@ -63,9 +63,17 @@ TEST_CASE("HODLR: rows mixed within pairs (the exact step's matrices) keep the r
   Eigen::MatrixXd Cw = Eigen::MatrixXd::Zero(m, m), Cy = Eigen::MatrixXd::Zero(m, m);
   for (int i = 0; i < m / 2; ++i) {
     const int f = 2 * i;
-    if (i % 3 == 0) Cw.block<2, 2>(f, f) << -0.5, 0.1, 0.0, -0.7, Cy.block<2, 2>(f, f).setIdentity();  // separated
-    else if (i % 3 == 1) Cw.block<2, 2>(f, f).setIdentity();                                              // stick
-    else Cw.block<2, 2>(f, f) << -0.3, 0.2 * 0.4, 0.0, 1.0, Cy.block<2, 2>(f, f) << 1.0, -0.2, 0.0, 0.0;  // slide
+    Eigen::Matrix2d w, y = Eigen::Matrix2d::Zero();
+    if (i % 3 == 0) {  // separated: Rbar = y - E u
+      w << -0.5, 0.0, 0.0, -0.7;
+      y.setIdentity();
+    } else if (i % 3 == 1) {  // stick: u
+      w.setIdentity();
+    } else {  // slide: Rbar_t - s Rbar_n and u_n
+      w << -0.3, 0.2 * 0.4, 0.0, 1.0;
+      y << 1.0, -0.2, 0.0, 0.0;
+    }
+    Cw.block<2, 2>(f, f) = w, Cy.block<2, 2>(f, f) = y;
   }
   const Eigen::MatrixXd A = Cy + Cw * W;
   const HodlrMatrix Hw(W, 1e-12 * W.norm(), 32, 2), H(A, 1e-12 * A.norm(), 32, 2);
@@ -74,6 +82,24 @@ TEST_CASE("HODLR: rows mixed within pairs (the exact step's matrices) keep the r
   const Eigen::VectorXd b = Eigen::VectorXd::Random(m);
   const Eigen::VectorXd x = HodlrSolver(H).solve(b);
   CHECK((A * x - b).norm() <= 1e-9 * b.norm());
+  // The same matrix from W's compression by mixing its rows: no recompression, same ranks.
+  Eigen::MatrixXd Cw_blocks(2, m), Cy_blocks(2, m);
+  for (int i = 0; i < m / 2; ++i)
+    Cw_blocks.middleCols<2>(2 * i) = Cw.block<2, 2>(2 * i, 2 * i), Cy_blocks.middleCols<2>(2 * i) = Cy.block<2, 2>(2 * i, 2 * i);
+  const HodlrMatrix Hm = Hw.rows_mixed(Cw_blocks, Cy_blocks);
+  CHECK(Hm.max_rank() == Hw.max_rank());
+  CHECK((Hm.multiply(b) - A * b).norm() <= 1e-10 * (A * b).norm());
+  const Eigen::VectorXd xm = HodlrSolver(Hm).solve(b);
+  CHECK((A * xm - b).norm() <= 1e-9 * b.norm());
+}
+
+TEST_CASE("HODLR: uncoupled halves have rank zero", "[hodlr]") {
+  Eigen::MatrixXd A = kernel_matrix(128);
+  A.topRightCorner(64, 64).setZero(), A.bottomLeftCorner(64, 64).setZero();
+  const HodlrMatrix H(A, 1e-13 * A.norm(), 64, 1);
+  CHECK(H.max_rank() == 0);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(128, 1.0, 2.0);
+  CHECK((A * HodlrSolver(H).solve(b) - b).norm() <= 1e-12 * b.norm());
 }
 
 TEST_CASE("HODLR: a singular diagonal block gives a solution that is not finite", "[hodlr]") {

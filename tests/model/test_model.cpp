@@ -184,3 +184,47 @@ time = { T = 1.0; };
   const Config free_cfg = test::config_from_text(text, {"interface.boundary=\"bottom\"", "interface.Cn=1e-30", "interface.Ct=1e-30"});
   CHECK_THROWS_WITH(test::make_model(free_cfg), Catch::Contains("not restrained"));
 }
+
+TEST_CASE("the compressed exact step gives the dense one's contact solution (B1, damaged, sliding)", "[model][compressed]") {
+  // B1 on 128 x 4 cells (129 contact pairs, W0 258 x 258 in leaves of 64 rows), pressed on top
+  // so that the far end sticks, beta damaged over the last quarter, solved with the exact
+  // step's matrix dense and compressed (HODLR), cold and then warm at a later time with beta
+  // further damaged: the same Rbar and u to
+  // the solver's tolerance, and separated, stick and slide pairs all present.
+  const std::string text = R"(
+mesh = { size = [50.0, 2.5]; nx = 128; ny = 4; element = "T3"; };
+material = { E = 6.9e4; nu = 0.333; hypothesis = "plane_strain"; };
+interface = { boundary = "bottom"; normal = [0.0, 1.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
+loads = ( { node_set = "top_left"; type = "displacement"; component = "y"; value = 0.3; },
+          { node_set = "top"; type = "traction"; component = "y"; value = -2.0; } );
+time = { T = 10.0; steps = 210; };
+solver = { tolerance = 1.0e-12; };
+)";
+  const Config dense_cfg = test::config_from_text(text, {"solver.compressed_min_nodes=100000"});
+  const Config compressed_cfg = test::config_from_text(text, {"solver.compressed_min_nodes=0"});
+  const Model model = test::make_model(dense_cfg);
+  const InterfaceState s0 = InterfaceState::initial(model);
+  const auto damaged = [&](double front) {
+    Eigen::VectorXd beta = model.initial_beta();
+    for (int i = 0; i < model.contact_nodes(); ++i) beta[i] = std::min(1.0, std::max(0.0, 4.0 * (128 - i) / 128.0 - front));
+    return beta;
+  };
+  BipotentialSolver dense(dense_cfg.solver), compressed(compressed_cfg.solver);
+  const ContactSolution* previous_dense = nullptr;
+  const ContactSolution* previous_compressed = nullptr;
+  ContactSolution a, b;
+  for (const auto& [t, front] : std::vector<std::pair<double, double>>{{5.0, 0.0}, {5.5, 0.4}}) {
+    a = solve_contact(model, dense, t, damaged(front), s0, previous_dense);
+    b = solve_contact(model, compressed, t, damaged(front), s0, previous_compressed);
+    REQUIRE(a.converged);
+    REQUIRE(b.converged);
+    INFO("t = " << t);
+    CHECK((b.Rbar - a.Rbar).norm() <= 1e-9 * a.y.norm());
+    CHECK((b.u - a.u).norm() <= 1e-9 * a.u.norm());
+    CHECK(std::count(a.status.begin(), a.status.end(), Status::Separated) > 0);
+    CHECK(std::count(a.status.begin(), a.status.end(), Status::Stick) > 0);
+    CHECK(std::count(a.status.begin(), a.status.end(), Status::Slide) > 0);
+    CHECK(a.status == b.status);
+    previous_dense = &a, previous_compressed = &b;
+  }
+}

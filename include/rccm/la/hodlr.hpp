@@ -25,6 +25,10 @@ class HodlrMatrix {
   HodlrMatrix& operator=(HodlrMatrix&&) noexcept;
 
   Eigen::Index size() const { return size_; }
+  /// The matrix C_y + C_w A for block-diagonal C_w, C_y with blocks of the granule's size,
+  /// given side by side (granule x size): the off-diagonal blocks keep their ranks, only the
+  /// leaves and the left factors U change (m r work, no recompression).
+  HodlrMatrix rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const;
   /// y = A x.
   Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
@@ -35,8 +39,10 @@ class HodlrMatrix {
 
  private:
   friend class HodlrSolver;
+  HodlrMatrix() = default;
   std::unique_ptr<Node> root_;
   Eigen::Index size_ = 0;
+  int granule_ = 1;
 };
 
 /// The factorization of a HodlrMatrix: dense LU at the leaves, and at each bisection the
