@@ -30,10 +30,11 @@ inline std::string write_temp_config(const std::string& text) {
 }
 
 inline Config config_from_text(const std::string& text, const std::vector<std::string>& overrides = {}) {
-  const std::string path = write_temp_config(text);
-  Config c = load_config(path, overrides);
-  std::remove(path.c_str());
-  return c;
+  struct Removed {  // also when load_config throws (the bad-config tests)
+    std::string path;
+    ~Removed() { std::remove(path.c_str()); }
+  } file{write_temp_config(text)};
+  return load_config(file.path, overrides);
 }
 
 /// The model of a config on its built-in rectangle mesh, as `rccm run` builds it.
