@@ -4,7 +4,6 @@
 #include "rccm/la/gmres.hpp"
 
 #include <cmath>
-#include <limits>
 
 namespace rccm {
 
@@ -101,13 +100,13 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
   for (int i = 0; i < pb.size(); ++i)
     if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], i)) changed.push_back(i);
   const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = pb.W0->size();
-  D_.resize(hodlr_ ? 0 : c, m);
+  D_.resize(c, m);
   if (c == 0) return true;
   if (hodlr_) return false;  // a new compressed factorization costs less than a correction
   if (2 * c > m) return false;  // a new factorization costs less
   // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1
   // (gathered from the inverse once there is one, c solves with the LU before).
-  if (!hodlr_ && ++reuses_ >= 2) inverse();
+  if (++reuses_ >= 2) inverse();
   Eigen::MatrixXd S = Eigen::MatrixXd::Zero(inverse_ready_ ? 0 : m, c);
   Z_.resize(m, c);
   for (std::size_t k = 0; k < changed.size(); ++k) {

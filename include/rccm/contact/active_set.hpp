@@ -79,7 +79,7 @@ class ActiveSetSystem {
   bool update(const ContactProblem& pb, const Pattern& pattern);
   /// The inverse of A0 with the pending correction, times r.
   Eigen::VectorXd apply_inverse(const Eigen::VectorXd& r);
-  /// A0^-1 B: the LU, or the compressed factorization of the row-scaled A0.
+  /// A0^-1 B: by the LU, or by the compressed factorization.
   Eigen::MatrixXd solve_A0(const Eigen::MatrixXd& B) const;
   /// Refinement of y (and u) with apply_inverse, then GMRES where refinement stalls: true once
   /// the pattern's residual r is converged.
