@@ -161,20 +161,14 @@ template <int dim>
 void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pattern) {
   const Eigen::Index m = pb.W0->size();
   hodlr_.reset();
-  if (pb.size() >= compressed_min_nodes_) {
-    const Eigen::MatrixXd& W0 = *pb.W0->dense();
-    if (compressed_from_ != pb.W0 || W0_compressed_->size() != m || compressed_trace_ != W0.trace()) {
-      const double tolerance = tuning::hodlr_accuracy * pb.W0->diagonal_scale();
-      W0_compressed_.emplace(W0, tolerance, tuning::hodlr_leaf, dim);
-      compressed_from_ = pb.W0, compressed_trace_ = W0.trace();
-    }
+  if (const HodlrMatrix* W0 = pb.W0->compressed()) {
     Eigen::MatrixXd Cw(dim, m), Cy(dim, m);
     for (int i = 0; i < pb.size(); ++i) {
       Local w, y;
       mixing(pb, pattern[i], i, w, y);
       Cw.template middleCols<dim>(Eigen::Index(dim) * i) = w, Cy.template middleCols<dim>(Eigen::Index(dim) * i) = y;
     }
-    hodlr_.emplace(W0_compressed_->rows_mixed(Cw, Cy));
+    hodlr_.emplace(W0->rows_mixed(Cw, Cy));
     A0_.resize(0, 0);
   } else {
     A0_.resize(m, m);

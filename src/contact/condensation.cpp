@@ -16,13 +16,15 @@ Eigen::MatrixXd unit_responses(const ElasticProblem& body, const std::vector<Loa
 
 }  // namespace
 
-Condensation::Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads)
+Condensation::Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
+                           bool compress_W0)
     : body_(body),
       interface_(interface),
       U_(unit_responses(body, loads, interface.P.cols())),
       Q_(interface.P * U_),
       W0_(body.flexibility(interface.P)) {
   for (const LoadCase& lc : loads) amplitudes_.push_back(lc.amplitude);
+  if (compress_W0) W0_.compress(interface.layout.dim);
 }
 
 Eigen::VectorXd Condensation::q0(double t) const {

@@ -1,9 +1,18 @@
 #include "rccm/contact/delassus.hpp"
 
+#include "rccm/contact/solver_tuning.hpp"
+
 namespace rccm {
 
+void DenseDelassus::compress(int granule) {
+  compressed_.emplace(W_, tuning::hodlr_accuracy * diagonal_scale(), tuning::hodlr_leaf, granule);
+}
+
 void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
-  u.noalias() = W_ * y;
+  if (compressed_)
+    u = compressed_->multiply(y);
+  else
+    u.noalias() = W_ * y;
 }
 
 void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {

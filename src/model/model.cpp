@@ -121,7 +121,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }
-  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_);
+  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_,
+                                                interface_.size() >= cfg.solver.compressed_min_nodes);
   D1_ = interface_.spring_stiffness();
   g0_.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) g0_[i] = interface_.pairs[i].g0;

@@ -66,6 +66,30 @@ TEST_CASE("Sparse and dense W0 are the same operator", "[delassus]") {
   }
 }
 
+TEST_CASE("A compressed W0's products are the dense ones to its accuracy; columns and blocks stay exact", "[delassus]") {
+  // A smooth symmetric kernel (the flexibility of a line decays slowly): 2 x 150 rows, leaves of 64.
+  const int n = 150, m = 2 * n;
+  Eigen::MatrixXd W(m, m);
+  for (int a = 0; a < m; ++a)
+    for (int b = 0; b < m; ++b) W(a, b) = (a % 2 == b % 2 ? 1.0 : 0.3) / (1.0 + std::abs(a / 2 - b / 2) / 4.0);
+  DenseDelassus plain{W}, compressed{W};
+  compressed.compress(2);
+  REQUIRE(plain.compressed() == nullptr);
+  REQUIRE(compressed.compressed() != nullptr);
+  CHECK(3 * compressed.compressed()->stored() < 2 * m * m);  // it is compressed
+  std::mt19937 gen(4);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Eigen::VectorXd y = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
+  Eigen::VectorXd up(m), uc(m);
+  plain.multiply(y, up);
+  compressed.multiply(y, uc);
+  CHECK((uc - W * y).norm() <= 1e-12 * W.norm() * y.norm());
+  CHECK(uc != up);  // the product went through the compression
+  CHECK(compressed.block(18, 2) == plain.block(18, 2));
+  CHECK(compressed.dense() != nullptr);
+  CHECK(*compressed.dense() == W);
+}
+
 TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the dense one", "[delassus]") {
   std::mt19937 gen(5);
   std::uniform_real_distribution<double> U(-1, 1), P(0, 1);

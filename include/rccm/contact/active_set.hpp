@@ -12,8 +12,8 @@
 // of the 2 m^3 of a new factorization and inverse). GMRES preconditioned by that corrected
 // inverse absorbs the small drift of the other rows and the inverse's own round-off. A new
 // factorization only when GMRES stalls or most rows changed. Needs a dense W0.
-// From solver.compressed_min_nodes pairs on, W0 is compressed once (la/hodlr.hpp: the off-diagonal
-// blocks of an interface line's flexibility have low rank r) and A0 = C_y + C_w W0 is mixed
+// When W0 is kept compressed (solver.compressed_min_nodes pairs on; la/hodlr.hpp: the off-diagonal
+// blocks of an interface line's flexibility have low rank r), A0 = C_y + C_w W0 is mixed
 // from it row by row and factorized compressed, at about m r^2 log^2 m instead of m^3, without
 // the dense A0: no explicit inverse, no pending corrections (a new compressed factorization
 // costs less), and the compressed solve is a preconditioner that refinement and GMRES bring
@@ -47,9 +47,6 @@ using Pattern = std::vector<PairRows>;
 template <int dim>
 class ActiveSetSystem {
  public:
-  /// From `compressed_min_nodes` pairs on, A0 is factorized compressed.
-  explicit ActiveSetSystem(int compressed_min_nodes) : compressed_min_nodes_(compressed_min_nodes) {}
-
   /// Improves y towards the solution of the pattern's linear problem, with u = W0 y + q0
   /// given and kept in step. Returns false when the pattern's matrix is singular (the caller
   /// goes on sweeping).
@@ -92,15 +89,11 @@ class ActiveSetSystem {
   /// the LU and pays no inverse.
   const Eigen::MatrixXd& inverse();
 
-  int compressed_min_nodes_;
   Pattern factorized_;                   // the pattern of A0_ (empty: none)
   Eigen::VectorXd E0_, mubar0_;          // the E = D1 - D(beta) and mubar of A0_'s rows
   Eigen::MatrixXd A0_, A0_inverse_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of A0_ as factorized (before any fold)
-  std::optional<HodlrSolver> hodlr_;        // of A0 compressed, instead of A0_ and lu_ (large m)
-  std::optional<HodlrMatrix> W0_compressed_;
-  const DelassusOperator* compressed_from_ = nullptr;  // the W0 of W0_compressed_, and its trace
-  double compressed_trace_ = 0;
+  std::optional<HodlrSolver> hodlr_;        // of A0 compressed, instead of A0_ and lu_ (W0 compressed)
   bool inverse_ready_ = false;
   int reuses_ = 0;  // updates since the factorization
   // Pending correction A = A0 + S D (S: unit columns of the changed rows), Z = A0^-1 S.

@@ -18,7 +18,7 @@ namespace rccm {
 class BipotentialSolver final : public ContactSolver {
  public:
   explicit BipotentialSolver(const SolverParams& params)
-      : params_(params), active_set_2d_(params.compressed_min_nodes), active_set_3d_(params.compressed_min_nodes) {}
+      : params_(params) {}
 
   std::string failure_advice() const override;
 

@@ -2,7 +2,8 @@
 //   u_c = W0 y + q0(t),  W0 = P K0^-1 P^T,  q0(t) = sum_k amplitude_k(t) P U_k,
 // where U_k is the displacement under load case k with the interface forces zero and the
 // springs at beta = 1 (in K0). Built once per run: one CHOLMOD factorization with the interface
-// DOFs last (W0 from its trailing block), one solve per load case.
+// DOFs last (W0 from its trailing block), one solve per load case. On large interfaces W0 is
+// also kept compressed (contact/delassus.hpp).
 #pragma once
 
 #include "rccm/contact/delassus.hpp"
@@ -18,7 +19,8 @@ namespace rccm {
 
 class Condensation {
  public:
-  Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads);
+  Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
+               bool compress_W0);
 
   const DelassusOperator& W0() const { return W0_; }
 

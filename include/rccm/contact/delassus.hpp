@@ -4,9 +4,12 @@
 #pragma once
 
 #include "rccm/interface/layout.hpp"
+#include "rccm/la/hodlr.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+
+#include <optional>
 
 namespace rccm {
 
@@ -32,21 +35,31 @@ class DelassusOperator {
   /// The matrix itself when it is stored dense (the exact active-set step and the plain form
   /// need it); nullptr otherwise.
   virtual const Eigen::MatrixXd* dense() const { return nullptr; }
+
+  /// W0 compressed (la/hodlr.hpp) when it is kept so: the exact step mixes its matrix from it.
+  virtual const HodlrMatrix* compressed() const { return nullptr; }
 };
 
 /// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few thousand pairs.
+/// Compressed besides on large interfaces: its products then cost about m r log m instead of
+/// m^2 (the off-diagonal blocks' rank r is 15-20 on an interface line), to an accuracy of
+/// tuning::hodlr_accuracy relative to its diagonal; columns and blocks stay exact.
 class DenseDelassus final : public DelassusOperator {
  public:
   explicit DenseDelassus(Eigen::MatrixXd W) : W_(std::move(W)) {}
+  /// Keeps W0 compressed besides, a contact pair's `granule` rows in one block.
+  void compress(int granule);
   Eigen::Index size() const override { return W_.rows(); }
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
   void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.block(first, first, n, n); }
   double diagonal_scale() const override { return W_.diagonal().cwiseAbs().maxCoeff(); }
   const Eigen::MatrixXd* dense() const override { return &W_; }
+  const HodlrMatrix* compressed() const override { return compressed_ ? &*compressed_ : nullptr; }
 
  private:
   Eigen::MatrixXd W_;
+  std::optional<HodlrMatrix> compressed_;
 };
 
 /// W0 stored as a sparse matrix (memory and products proportional to its nonzeros): the

@@ -23,7 +23,7 @@ namespace rccm {
 
 class NewtonSolver final : public ContactSolver {
  public:
-  explicit NewtonSolver(const SolverParams& params) : params_(params), active_set_(params.compressed_min_nodes) {}
+  explicit NewtonSolver(const SolverParams& params) : params_(params) {}
 
   std::string failure_advice() const override;
 

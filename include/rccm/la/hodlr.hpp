@@ -30,7 +30,7 @@ class HodlrMatrix {
   /// leaves and the left factors U change (m r work, no recompression).
   HodlrMatrix rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const;
   /// y = A x.
-  Eigen::VectorXd multiply(const Eigen::VectorXd& x) const;
+  Eigen::VectorXd multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
   Eigen::Index stored() const;
