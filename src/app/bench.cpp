@@ -111,23 +111,29 @@ void print_bench_row(std::ostream& out, const BenchRow& row) {
 
 void print_growth(std::ostream& out, const std::vector<BenchRow>& rows) {
   if (rows.size() < 2) return;
-  // Least-squares slope of log(y) against log(unknowns).
-  const auto slope = [&](auto value) {
+  // Least-squares slope of log(value) against log(size).
+  const auto slope = [&](auto size, auto value) {
     double sx = 0, sy = 0, sxx = 0, sxy = 0;
     const double n = static_cast<double>(rows.size());
     for (const BenchRow& row : rows) {
-      const double x = std::log(double(row.result.dofs)), y = std::log(std::max(value(row), 1e-12));
+      const double x = std::log(double(size(row.result))), y = std::log(std::max(value(row), 1e-12));
       sx += x, sy += y, sxx += x * x, sxy += x * y;
     }
     return (n * sxy - sx * sy) / (n * sxx - sx * sx);
   };
-  char line[256];
+  const auto unknowns = [](const RunResult& r) { return r.dofs; };
+  const auto contact_nodes = [](const RunResult& r) { return r.contact_nodes; };
+  const auto setup = [](const BenchRow& r) { return figures(r.result).setup; };
+  const auto per_solve = [](const BenchRow& r) { return figures(r.result).us_per_solve; };
+  const auto per_step = [](const BenchRow& r) { return figures(r.result).ms_per_step; };
+  const auto memory = [](const BenchRow& r) { return r.peak_rss_mb; };
+  char line[512];
   std::snprintf(line, sizeof line,
-                "growth exponents against unknowns: setup %.2f, per contact solve %.2f, per step %.2f, memory %.2f\n",
-                slope([](const BenchRow& r) { return figures(r.result).setup; }),
-                slope([](const BenchRow& r) { return figures(r.result).us_per_solve; }),
-                slope([](const BenchRow& r) { return figures(r.result).ms_per_step; }),
-                slope([](const BenchRow& r) { return r.peak_rss_mb; }));
+                "growth exponents against unknowns: setup %.2f, per contact solve %.2f, per step %.2f, memory %.2f\n"
+                "growth exponents against contact nodes: setup %.2f, per contact solve %.2f, per step %.2f, memory %.2f\n",
+                slope(unknowns, setup), slope(unknowns, per_solve), slope(unknowns, per_step), slope(unknowns, memory),
+                slope(contact_nodes, setup), slope(contact_nodes, per_solve), slope(contact_nodes, per_step),
+                slope(contact_nodes, memory));
   out << line;
 }
 
