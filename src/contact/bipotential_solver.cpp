@@ -80,27 +80,29 @@ class BipotentialSolver::Iteration {
     const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
     const double noise = noise_floor();
     const double F_old = force_level(pb_, s.Rbar, s.u);
-    Eigen::VectorXd y_new;  // the Jacobi form's next y
-    if (!gauss_seidel) y_new = s.y;
-    for (int i = 0; i < pb_.size(); ++i) {
+    // Pair i's local solve at the current u: its status and projection, and its next y.
+    const auto local = [&](int i) -> Vec {
       const PairBlock<dim>& b = blocks_[i];
-      if (b.prescribed) continue;
       const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
       Vec R = pair<dim>(s.Rbar, i);
       const double relative = tuning::local_tolerance_fraction * params_.tolerance;
       s.status[i] = gauss_seidel ? solve_pair<dim>(b, c, R, params_.local_iterations, relative, F_old, noise)
                                  : iterate_pair<dim>(b, c, R, 1, relative, F_old, noise);  // Jacobi: the paper's one step
       pair<dim>(R_projected_, i) = R;
-      const Vec yi = R + b.E.cwiseProduct(Vec(b.Wb * R + c));
-      if (gauss_seidel) {
-        pb_.W0->add_response(pb_.layout.offset(i), yi - pair<dim>(s.y, i), s.u);
-        pair<dim>(s.y, i) = yi;
-        pair<dim>(s.Rbar, i) = R;
-      } else {
-        pair<dim>(y_new, i) = yi;
-      }
+      return R + b.E.cwiseProduct(Vec(b.Wb * R + c));
+    };
+    if (gauss_seidel) {
+      pb_.W0->gauss_seidel(dim, [&](int i) {
+        if (blocks_[i].prescribed) return;
+        pair<dim>(s.y, i) = local(i);
+        pair<dim>(s.Rbar, i) = pair<dim>(R_projected_, i);
+      }, s.y, s.u);
+      return;
     }
-    if (!gauss_seidel) s.y += params_.relaxation * (y_new - s.y);
+    Eigen::VectorXd y_new = s.y;  // the Jacobi form's next y
+    for (int i = 0; i < pb_.size(); ++i)
+      if (!blocks_[i].prescribed) pair<dim>(y_new, i) = local(i);
+    s.y += params_.relaxation * (y_new - s.y);
   }
 
   /// After a sweep: Rbar = y - E u, and whether its relative change since R_old and the

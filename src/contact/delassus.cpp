@@ -4,6 +4,21 @@
 
 namespace rccm {
 
+void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
+                                    Eigen::VectorXd& u) const {
+  for (Eigen::Index first = 0; first < size(); first += dim) {
+    const LocalVector old = y.segment(first, dim);
+    update(static_cast<int>(first / dim));
+    add_response(first, y.segment(first, dim) - old, u);
+  }
+}
+
+void DenseDelassus::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
+                                 Eigen::VectorXd& u) const {
+  if (!compressed_) return DelassusOperator::gauss_seidel(dim, update, y, u);
+  compressed_->gauss_seidel([&](Eigen::Index first) { update(static_cast<int>(first / dim)); }, y, u);
+}
+
 void DenseDelassus::compress(int granule) {
   compressed_.emplace(W_, tuning::hodlr_accuracy * diagonal_scale(), tuning::hodlr_leaf, granule);
 }

@@ -176,17 +176,15 @@ class NewtonSolver::Iteration {
   /// (pair_block.hpp) with the other pairs held, u updated at once.
   void sweep() {
     const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
-    for (int i = 0; i < pb_.size(); ++i) {
+    pb_.W0->gauss_seidel(dim, [&](int i) {
       const PairBlock<dim>& b = blocks_[i];
-      if (b.prescribed) continue;
+      if (b.prescribed) return;
       const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
       Vec R = pair<dim>(s.Rbar, i);
       solve_pair<dim>(b, c, R, params_.local_iterations, tuning::local_tolerance_fraction * params_.tolerance, F_old, 0.0);
-      const Vec yi = R + b.E.cwiseProduct(Vec(b.Wb * R + c));
-      pb_.W0->add_response(pb_.layout.offset(i), yi - pair<dim>(s.y, i), s.u);
-      pair<dim>(s.y, i) = yi;
+      pair<dim>(s.y, i) = R + b.E.cwiseProduct(Vec(b.Wb * R + c));
       pair<dim>(s.Rbar, i) = R;
-    }
+    }, s.y, s.u);
     refresh();
   }
 

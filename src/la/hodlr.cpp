@@ -90,6 +90,26 @@ Eigen::VectorXd multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const E
   return y;
 }
 
+void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void(Eigen::Index)>& visit,
+                  const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+  const Eigen::Index n = node.end - node.begin;
+  if (node.leaf()) {
+    for (Eigen::Index first = node.begin; first < node.end; first += g) {
+      const Eigen::VectorXd old = x.segment(first, g);
+      visit(first);
+      y.segment(node.begin, n) += node.dense.middleCols(first - node.begin, g) * (x.segment(first, g) - old);
+    }
+    return;
+  }
+  const HodlrMatrix::Node &a = *node.first, &b = *node.second;
+  const Eigen::VectorXd x1 = x.segment(a.begin, a.end - a.begin);
+  gauss_seidel(a, g, visit, x, y);
+  y.segment(b.begin, b.end - b.begin) += node.U21 * (node.V21.transpose() * (x.segment(a.begin, a.end - a.begin) - x1));
+  const Eigen::VectorXd x2 = x.segment(b.begin, b.end - b.begin);
+  gauss_seidel(b, g, visit, x, y);
+  y.segment(a.begin, a.end - a.begin) += node.U12 * (node.V12.transpose() * (x.segment(b.begin, b.end - b.begin) - x2));
+}
+
 /// Rows [begin, begin + M.rows()) of blockdiag(C) M, C's blocks g x g side by side.
 Eigen::MatrixXd left_blocks(const Eigen::MatrixXd& C, Eigen::Index begin, const Eigen::MatrixXd& M, int g) {
   Eigen::MatrixXd out(M.rows(), M.cols());
@@ -134,6 +154,11 @@ HodlrMatrix::HodlrMatrix(HodlrMatrix&&) noexcept = default;
 HodlrMatrix& HodlrMatrix::operator=(HodlrMatrix&&) noexcept = default;
 
 Eigen::VectorXd HodlrMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const { return rccm::multiply(*root_, x); }
+
+void HodlrMatrix::gauss_seidel(const std::function<void(Eigen::Index)>& visit, const Eigen::VectorXd& x,
+                               Eigen::VectorXd& y) const {
+  rccm::gauss_seidel(*root_, granule_, visit, x, y);
+}
 
 HodlrMatrix HodlrMatrix::rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const {
   HodlrMatrix out;

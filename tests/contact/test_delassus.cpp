@@ -66,7 +66,7 @@ TEST_CASE("Sparse and dense W0 are the same operator", "[delassus]") {
   }
 }
 
-TEST_CASE("A compressed W0's products are the dense ones to its accuracy; columns and blocks stay exact", "[delassus]") {
+TEST_CASE("A compressed W0's products and Gauss-Seidel passes are the dense ones to its accuracy, blocks stay exact", "[delassus]") {
   // A smooth symmetric kernel (the flexibility of a line decays slowly): 2 x 150 rows, leaves of 64.
   const int n = 150, m = 2 * n;
   Eigen::MatrixXd W(m, m);
@@ -86,6 +86,20 @@ TEST_CASE("A compressed W0's products are the dense ones to its accuracy; column
   CHECK((uc - W * y).norm() <= 1e-12 * W.norm() * y.norm());
   CHECK(uc != up);  // the product went through the compression
   CHECK(compressed.block(18, 2) == plain.block(18, 2));
+  // A Gauss-Seidel pass whose updates read u (y_i from u_i): the same sequence of y and u
+  // through the hierarchy as pair by pair with W0's columns, and u - W0 y kept.
+  const Eigen::VectorXd q = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
+  Eigen::VectorXd yp = y, yc = y, upass = W * y + q, ucompressed = upass;
+  const auto pass = [&](const DenseDelassus& op, Eigen::VectorXd& yy, Eigen::VectorXd& uu) {
+    op.gauss_seidel(2, [&](int i) { yy.segment(2 * i, 2) = -0.4 * uu.segment(2 * i, 2) + 0.1 * yy.segment(2 * i, 2); }, yy, uu);
+  };
+  pass(plain, yp, upass);
+  pass(compressed, yc, ucompressed);
+  CHECK((yp - y).norm() > 0.1 * y.norm());  // the pass moved y
+  CHECK((yc - yp).norm() <= 1e-11 * yp.norm());
+  CHECK((ucompressed - upass).norm() <= 1e-11 * upass.norm());
+  CHECK((upass - W * yp - q).norm() <= 1e-12 * upass.norm());
+  CHECK((ucompressed - W * yc - q).norm() <= 1e-12 * ucompressed.norm());
   CHECK(compressed.dense() != nullptr);
   CHECK(*compressed.dense() == W);
 }

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <functional>
 #include <optional>
 
 namespace rccm {
@@ -25,6 +26,13 @@ class DelassusOperator {
 
   /// u += W0 (:, first .. first + dy.size() - 1) dy: the response to a change of one pair's force.
   virtual void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const = 0;
+
+  /// A Gauss-Seidel pass over the pairs (of `dim` rows each), in order: update(i) changes pair
+  /// i's entries of y, reading its entries of u, which keep up with y's earlier changes
+  /// (u - W0 y is what it was at the pass's start, on that pair on entry to update(i) and
+  /// everywhere after the pass). Pair by pair with add_response unless overridden.
+  virtual void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
+                            Eigen::VectorXd& u) const;
 
   /// The diagonal block W0 (first.., first..) of one pair, of size n.
   virtual LocalMatrix block(Eigen::Index first, int n) const = 0;
@@ -56,6 +64,9 @@ class DenseDelassus final : public DelassusOperator {
   double diagonal_scale() const override { return W_.diagonal().cwiseAbs().maxCoeff(); }
   const Eigen::MatrixXd* dense() const override { return &W_; }
   const HodlrMatrix* compressed() const override { return compressed_ ? &*compressed_ : nullptr; }
+  /// Compressed: by the hierarchy (m r log m per pass instead of m^2).
+  void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
+                    Eigen::VectorXd& u) const override;
 
  private:
   Eigen::MatrixXd W_;

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <functional>
 #include <memory>
 
 namespace rccm {
@@ -31,6 +32,12 @@ class HodlrMatrix {
   HodlrMatrix rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const;
   /// y = A x.
   Eigen::VectorXd multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// A Gauss-Seidel pass in the order of the granules: visit(first) changes x's granule at
+  /// `first` (reading y's), and y keeps up with it: on entry to each visit y holds
+  /// A x + (y - A x at the pass's start) on that granule, and after the pass everywhere.
+  /// Costs m r log m per pass (the leaves' columns, then each bisection's blocks once).
+  void gauss_seidel(const std::function<void(Eigen::Index first)>& visit, const Eigen::VectorXd& x,
+                    Eigen::VectorXd& y) const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
   Eigen::Index stored() const;
