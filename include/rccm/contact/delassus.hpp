@@ -49,9 +49,10 @@ class DelassusOperator {
 };
 
 /// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few thousand pairs.
-/// Compressed besides on large interfaces: its products then cost about m r log m instead of
-/// m^2 (the off-diagonal blocks' rank r is 15-20 on an interface line), to an accuracy of
-/// tuning::hodlr_accuracy relative to its diagonal; columns and blocks stay exact.
+/// Compressed besides on large interfaces: its products and Gauss-Seidel passes then cost
+/// about m r log m instead of m^2 (the off-diagonal blocks' rank r is 15-20 on an interface
+/// line), to an accuracy of tuning::hodlr_accuracy relative to its diagonal; columns and
+/// blocks stay exact.
 class DenseDelassus final : public DelassusOperator {
  public:
   explicit DenseDelassus(Eigen::MatrixXd W) : W_(std::move(W)) {}
