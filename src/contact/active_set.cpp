@@ -244,7 +244,7 @@ bool ActiveSetSystem<dim>::solve(const ContactProblem& pb, const Pattern& patter
   y += dy;
   pb.W0->multiply(y, u);
   u += pb.q0;
-  if (hodlr_) {  // the compressed factorization solved the rows to its accuracy: refined to the exact ones
+  if (hodlr_) {  // the compressed factorization solved the rows to its accuracy: refined by W0's products
     r = residual(pb, pattern, y, u);
     refine(pb, pattern, r, y, u);
   }

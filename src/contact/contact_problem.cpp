@@ -30,7 +30,10 @@ ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s) {
   ContactResiduals c;
   const Eigen::VectorXd y = s.Rbar + (pb.D1 - pb.Dbeta).cwiseProduct(s.u);
   Eigen::VectorXd Wy(y.size());
-  pb.W0->multiply(y, Wy);
+  if (const Eigen::MatrixXd* W0 = pb.W0->dense())
+    Wy.noalias() = *W0 * y;  // not by a compression the solver used: an independent check
+  else
+    pb.W0->multiply(y, Wy);
   c.equilibrium = (Wy + pb.q0 - s.u).cwiseAbs().maxCoeff() / U;
   for (int i = 0; i < pb.size(); ++i) {
     const LocalVector R = L.local(s.Rbar, i), v = pb.slip_and_gap(i, L.local(s.u, i));

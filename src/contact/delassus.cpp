@@ -1,5 +1,6 @@
 #include "rccm/contact/delassus.hpp"
 
+#include "rccm/base/errors.hpp"
 #include "rccm/contact/solver_tuning.hpp"
 
 namespace rccm {
@@ -16,6 +17,7 @@ void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& upd
 void DenseDelassus::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                                  Eigen::VectorXd& u) const {
   if (!compressed_) return DelassusOperator::gauss_seidel(dim, update, y, u);
+  RCCM_VERIFY(compressed_->granule() == dim, "gauss_seidel(): W0 was compressed for pairs of another size");
   compressed_->gauss_seidel([&](Eigen::Index first) { update(static_cast<int>(first / dim)); }, y, u);
 }
 

@@ -53,7 +53,8 @@ void compress(const Eigen::Ref<const Eigen::MatrixXd>& B, double tolerance, std:
   }
   const Eigen::MatrixXd Vq = B.transpose() * Q;  // B ~ Q Vq^T
   // Jacobi, not BDCSVD: Eigen 3.4's BDCSVD lost 1e-6 of |B| on W0's blocks (singular values
-  // falling to 1e-9 of the largest), and Vq has only Q's few columns.
+  // falling to 1e-9 of the largest). Vq has Q's columns, few on low-rank blocks (on a block
+  // of full rank Jacobi is slower, and the compression pointless anyway).
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Vq, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
   // Keep the singular values whose tail exceeds the tolerance.
@@ -94,10 +95,12 @@ void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void
                   const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index n = node.end - node.begin;
   if (node.leaf()) {
+    Eigen::VectorXd old(g), change(g);  // one allocation per leaf, not per granule
     for (Eigen::Index first = node.begin; first < node.end; first += g) {
-      const Eigen::VectorXd old = x.segment(first, g);
+      old = x.segment(first, g);
       visit(first);
-      y.segment(node.begin, n) += node.dense.middleCols(first - node.begin, g) * (x.segment(first, g) - old);
+      change = x.segment(first, g) - old;
+      y.segment(node.begin, n).noalias() += node.dense.middleCols(first - node.begin, g) * change;
     }
     return;
   }

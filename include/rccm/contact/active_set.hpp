@@ -17,7 +17,7 @@
 // from it row by row and factorized compressed, at about m r^2 log^2 m instead of m^3, without
 // the dense A0: no explicit inverse, no pending corrections (a new compressed factorization
 // costs less), and the compressed solve is a preconditioner that refinement and GMRES bring
-// to the exact rows.
+// to the rows of W0's products (themselves compressed, to tuning::hodlr_accuracy).
 // Written for the pairs' dimension (2 or 3) as a template, as the solver's inner loops.
 #pragma once
 

@@ -30,7 +30,8 @@ class DelassusOperator {
   /// A Gauss-Seidel pass over the pairs (of `dim` rows each), in order: update(i) changes pair
   /// i's entries of y, reading its entries of u, which keep up with y's earlier changes
   /// (u - W0 y is what it was at the pass's start, on that pair on entry to update(i) and
-  /// everywhere after the pass). Pair by pair with add_response unless overridden.
+  /// everywhere after the pass). Pair by pair with add_response unless overridden. If update
+  /// throws, u is left behind y: the caller discards both.
   virtual void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                             Eigen::VectorXd& u) const;
 

@@ -46,8 +46,9 @@ constexpr double refinement_gain = 0.1;
 /// below this fraction of the first one is converged.
 constexpr double unmoved = 1e-12;
 constexpr double converged_residual = 1e-13;
-/// The compressed (HODLR) factorization of A0 (from solver.compressed_min_nodes pairs on):
-/// rows per leaf, and the accuracy of W0's off-diagonal blocks relative to W0's diagonal.
+/// W0 kept compressed (HODLR, from solver.compressed_min_nodes pairs on), for its products,
+/// sweeps and the exact step's factorization: rows per leaf, and the accuracy of W0's
+/// off-diagonal blocks relative to W0's diagonal.
 constexpr int hodlr_leaf = 64;
 constexpr double hodlr_accuracy = 1e-13;
 /// GMRES rescue of a stalled refinement: iterations, passes, relative tolerance.

@@ -26,6 +26,7 @@ class HodlrMatrix {
   HodlrMatrix& operator=(HodlrMatrix&&) noexcept;
 
   Eigen::Index size() const { return size_; }
+  int granule() const { return granule_; }
   /// The matrix C_y + C_w A for block-diagonal C_w, C_y with blocks of the granule's size,
   /// given side by side (granule x size): the off-diagonal blocks keep their ranks, only the
   /// leaves and the left factors U change (m r work, no recompression).
