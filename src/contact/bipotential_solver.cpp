@@ -206,7 +206,8 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
                                             const Eigen::VectorXd& u_start) {
   Iteration<dim> it(pb, params_, Rbar_start, u_start);
   ContactSolution& s = it.s;
-  const bool exact = params_.active_set && pb.size() <= params_.active_set_max_nodes && pb.W0->dense();
+  // The exact step's dense matrices are bounded by active_set_max_nodes; compressed, by nothing.
+  const bool exact = params_.active_set && (pb.W0->compressed() || (pb.size() <= params_.active_set_max_nodes && pb.W0->dense()));
   const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
 
   // Exact steps first (a primal-dual active-set iteration): from a warm start the pattern of

@@ -1,5 +1,7 @@
 #include "rccm/contact/condensation.hpp"
 
+#include "rccm/contact/solver_tuning.hpp"
+
 namespace rccm {
 
 namespace {
@@ -14,6 +16,13 @@ Eigen::MatrixXd unit_responses(const ElasticProblem& body, const std::vector<Loa
   return body.solve(f, ud);
 }
 
+std::unique_ptr<DelassusOperator> flexibility(const ElasticProblem& body, const Interface& interface, bool compress) {
+  if (!compress) return std::make_unique<DenseDelassus>(body.flexibility(interface.P));
+  const auto products = [&](const Eigen::MatrixXd& Y) { return body.flexibility_products(interface.P, Y); };
+  return std::make_unique<CompressedDelassus>(HodlrMatrix::symmetric(
+      interface.P.rows(), products, tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim));
+}
+
 }  // namespace
 
 Condensation::Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
@@ -22,9 +31,8 @@ Condensation::Condensation(const ElasticProblem& body, const Interface& interfac
       interface_(interface),
       U_(unit_responses(body, loads, interface.P.cols())),
       Q_(interface.P * U_),
-      W0_(body.flexibility(interface.P)) {
+      W0_(flexibility(body, interface, compress_W0)) {
   for (const LoadCase& lc : loads) amplitudes_.push_back(lc.amplitude);
-  if (compress_W0) W0_.compress(interface.layout.dim);
 }
 
 Eigen::VectorXd Condensation::q0(double t) const {

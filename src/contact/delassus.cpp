@@ -1,7 +1,6 @@
 #include "rccm/contact/delassus.hpp"
 
 #include "rccm/base/errors.hpp"
-#include "rccm/contact/solver_tuning.hpp"
 
 namespace rccm {
 
@@ -14,26 +13,30 @@ void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& upd
   }
 }
 
-void DenseDelassus::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
-                                 Eigen::VectorXd& u) const {
-  if (!compressed_) return DelassusOperator::gauss_seidel(dim, update, y, u);
-  RCCM_VERIFY(compressed_->granule() == dim, "gauss_seidel(): W0 was compressed for pairs of another size");
-  compressed_->gauss_seidel([&](Eigen::Index first) { update(static_cast<int>(first / dim)); }, y, u);
-}
-
-void DenseDelassus::compress(int granule) {
-  compressed_.emplace(W_, tuning::hodlr_accuracy * diagonal_scale(), tuning::hodlr_leaf, granule);
-}
-
 void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
-  if (compressed_)
-    u = compressed_->multiply(y);
-  else
-    u.noalias() = W_ * y;
+  u.noalias() = W_ * y;
 }
 
 void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
   for (Eigen::Index k = 0; k < dy.size(); ++k) u += W_.col(first + k) * dy[k];  // 2-3 columns: axpy, not gemv
+}
+
+CompressedDelassus::CompressedDelassus(HodlrMatrix W) : W_(std::move(W)), diagonal_scale_(W_.diagonal_scale()) {}
+
+void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
+  u = W_.multiply(y);
+}
+
+void CompressedDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(size());
+  y.segment(first, dy.size()) = dy;
+  u += W_.multiply(y);
+}
+
+void CompressedDelassus::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
+                                      Eigen::VectorXd& u) const {
+  RCCM_VERIFY(W_.granule() == dim, "gauss_seidel(): W0 was compressed for pairs of another size");
+  W_.gauss_seidel([&](Eigen::Index first) { update(static_cast<int>(first / dim)); }, y, u);
 }
 
 SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W)) {

@@ -83,6 +83,11 @@ Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
   return W.selfadjointView<Eigen::Lower>();
 }
 
+Eigen::MatrixXd ElasticProblem::flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const {
+  const Eigen::MatrixXd f = P.transpose() * Y;  // prescribed DOFs: zero displacement, their forces unread
+  return P * extend_free(factor_->solve(restrict_free(f)));
+}
+
 Eigen::MatrixXd ElasticProblem::restrict_free(const Eigen::MatrixXd& full) const {
   Eigen::MatrixXd out(free_.size(), full.cols());
   for (std::size_t i = 0; i < free_.size(); ++i) out.row(i) = full.row(free_[i]);

@@ -1,10 +1,14 @@
 #include "rccm/la/hodlr.hpp"
 
+#include "rccm/base/errors.hpp"
+
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <limits>
 #include <random>
+#include <vector>
 
 namespace rccm {
 
@@ -18,46 +22,34 @@ struct HodlrMatrix::Node {
 
 namespace {
 
-/// B ~ U V^T with |B - U V^T|_F <= tolerance (with high probability): an orthonormal basis
-/// of B's range grown by blocks of random probes until the probes' residual is below the
-/// tolerance (Halko, Martinsson and Tropp, SIAM Rev. 53, 2011, alg. 4.2), then truncated by
-/// the SVD of the small factor.
-void compress(const Eigen::Ref<const Eigen::MatrixXd>& B, double tolerance, std::mt19937& rng, Eigen::MatrixXd& U,
+/// Y -= Q Q^T Y, twice: orthogonal to Q to round-off.
+void orthogonalize(const Eigen::MatrixXd& Q, Eigen::Ref<Eigen::MatrixXd> Y) {
+  for (int pass = 0; pass < 2; ++pass) Y -= Q * (Q.transpose() * Y);
+}
+
+/// Q grows by `add` orthonormal columns spanning Y's (Y already orthogonal to Q).
+void grow_basis(Eigen::MatrixXd& Q, const Eigen::MatrixXd& Y, Eigen::Index add) {
+  const Eigen::Index n1 = Y.rows();
+  Eigen::MatrixXd basis = Eigen::HouseholderQR<Eigen::MatrixXd>(Y).householderQ() * Eigen::MatrixXd::Identity(n1, add);
+  orthogonalize(Q, basis);  // Y's round-off is not orthogonal to Q
+  basis = Eigen::HouseholderQR<Eigen::MatrixXd>(basis).householderQ() * Eigen::MatrixXd::Identity(n1, add);
+  Q.conservativeResize(n1, Q.cols() + add);
+  Q.rightCols(add) = basis;
+}
+
+/// B ~ Q Vq^T (Vq = B^T Q) truncated to U V^T by the SVD of the small factor, keeping the
+/// singular values whose tail exceeds `tolerance` / 2.
+void truncate(const Eigen::MatrixXd& Q, const Eigen::MatrixXd& Vq, double tolerance, Eigen::MatrixXd& U,
               Eigen::MatrixXd& V) {
-  constexpr int probes = 8;
-  const Eigen::Index n1 = B.rows(), n2 = B.cols(), full = std::min(n1, n2);
-  std::normal_distribution<double> gauss;
-  Eigen::MatrixXd Q(n1, 0);
-  double floor = 0;  // round-off of B's products: no basis is grown from it
-  const auto orthogonalize = [&Q](Eigen::MatrixXd& Y) {
-    for (int pass = 0; pass < 2; ++pass) Y -= Q * (Q.transpose() * Y);  // twice: orthogonal to round-off
-  };
-  while (Q.cols() < full) {
-    Eigen::MatrixXd omega(n2, probes);
-    for (Eigen::Index k = 0; k < omega.size(); ++k) omega.data()[k] = gauss(rng);
-    Eigen::MatrixXd Y = B * omega;
-    if (Q.cols() == 0) floor = 1e-14 * Y.colwise().norm().maxCoeff();
-    orthogonalize(Y);
-    // E |M w|^2 = |M|_F^2 for a Gaussian w; the largest of `probes` samples, with a margin of 10.
-    if (10.0 * Y.colwise().norm().maxCoeff() <= std::max(tolerance, floor)) break;
-    const Eigen::Index add = std::min<Eigen::Index>(probes, full - Q.cols());
-    Eigen::MatrixXd basis = Eigen::HouseholderQR<Eigen::MatrixXd>(Y).householderQ() * Eigen::MatrixXd::Identity(n1, add);
-    orthogonalize(basis);  // Y's round-off is not orthogonal to Q
-    basis = Eigen::HouseholderQR<Eigen::MatrixXd>(basis).householderQ() * Eigen::MatrixXd::Identity(n1, add);
-    Q.conservativeResize(n1, Q.cols() + add);
-    Q.rightCols(add) = basis;
-  }
   if (Q.cols() == 0) {  // B below the tolerance: rank zero
-    U.resize(n1, 0), V.resize(n2, 0);
+    U.resize(Q.rows(), 0), V.resize(Vq.rows(), 0);
     return;
   }
-  const Eigen::MatrixXd Vq = B.transpose() * Q;  // B ~ Q Vq^T
   // Jacobi, not BDCSVD: Eigen 3.4's BDCSVD lost 1e-6 of |B| on W0's blocks (singular values
   // falling to 1e-9 of the largest). Vq has Q's columns, few on low-rank blocks (on a block
   // of full rank Jacobi is slower, and the compression pointless anyway).
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Vq, Eigen::ComputeThinU | Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
-  // Keep the singular values whose tail exceeds the tolerance.
   Eigen::Index rank = s.size();
   double tail = 0;
   while (rank > 0 && tail + s[rank - 1] * s[rank - 1] <= 0.25 * tolerance * tolerance)
@@ -66,20 +58,94 @@ void compress(const Eigen::Ref<const Eigen::MatrixXd>& B, double tolerance, std:
   V = svd.matrixU().leftCols(rank);
 }
 
-std::unique_ptr<HodlrMatrix::Node> build(const Eigen::MatrixXd& A, Eigen::Index begin, Eigen::Index end,
-                                         double tolerance, int leaf_size, int granule, std::mt19937& rng) {
+constexpr int probes = 8;  // random probes per round of a range finder
+
+/// One block's range finder (Halko, Martinsson and Tropp, SIAM Rev. 53, 2011, alg. 4.2): an
+/// orthonormal basis Q of B's range grown by rounds of random probes B omega until the
+/// probes' residual is below the tolerance.
+struct RangeFinder {
+  Eigen::MatrixXd Q;
+  Eigen::Index full;       // min(rows, cols): no more basis than that
+  double floor = 0;        // round-off of B's products: no basis is grown from it
+  double previous = 0;     // the last round's residual
+  bool done = false;
+
+  RangeFinder(Eigen::Index rows, Eigen::Index full) : Q(rows, 0), full(full) { done = full == 0; }
+
+  /// Takes a round's products Y = B omega (overwritten); done when they are within the
+  /// tolerance of Q's span. `noisy`: the products carry the errors of other blocks'
+  /// compressions (peeling), so a residual that stops falling near the tolerance is noise.
+  void take(Eigen::Ref<Eigen::MatrixXd> Y, double tolerance, bool noisy) {
+    if (Q.cols() == 0) floor = 1e-14 * Y.colwise().norm().maxCoeff();
+    orthogonalize(Q, Y);
+    // E |M w|^2 = |M|_F^2 for a Gaussian w; the largest of `probes` samples, with a margin of 10.
+    const double residual = Y.colwise().norm().maxCoeff();
+    const bool stalled = noisy && Q.cols() > 0 && residual <= 100 * tolerance && residual > 0.5 * previous;
+    previous = residual;
+    if (10.0 * residual <= std::max(tolerance, floor) || stalled) {
+      done = true;
+      return;
+    }
+    const Eigen::Index add = std::min<Eigen::Index>(Y.cols(), full - Q.cols());
+    grow_basis(Q, Y, add);
+    done = Q.cols() == full;
+  }
+};
+
+void gaussian(Eigen::Ref<Eigen::MatrixXd> omega, std::mt19937& rng) {
+  std::normal_distribution<double> gauss;
+  for (Eigen::Index j = 0; j < omega.cols(); ++j)
+    for (Eigen::Index i = 0; i < omega.rows(); ++i) omega(i, j) = gauss(rng);
+}
+
+/// B ~ U V^T with |B - U V^T|_F <= tolerance (with high probability).
+void compress(const Eigen::Ref<const Eigen::MatrixXd>& B, double tolerance, std::mt19937& rng, Eigen::MatrixXd& U,
+              Eigen::MatrixXd& V) {
+  RangeFinder range(B.rows(), std::min(B.rows(), B.cols()));
+  Eigen::MatrixXd omega(B.cols(), probes);
+  while (!range.done) {
+    gaussian(omega, rng);
+    Eigen::MatrixXd Y = B * omega;
+    range.take(Y, tolerance, false);
+  }
+  truncate(range.Q, B.transpose() * range.Q, tolerance, U, V);
+}
+
+/// The bisections down to leaves of at most `leaf_size` rows, at multiples of `granule`; no blocks yet.
+std::unique_ptr<HodlrMatrix::Node> bisections(Eigen::Index begin, Eigen::Index end, int leaf_size, int granule) {
   auto node = std::make_unique<HodlrMatrix::Node>();
   node->begin = begin, node->end = end;
   const Eigen::Index n = end - begin, mid = begin + (n / 2 / granule) * granule;
-  if (n <= leaf_size || mid == begin) {
-    node->dense = A.block(begin, begin, n, n);
-    return node;
-  }
-  node->first = build(A, begin, mid, tolerance, leaf_size, granule, rng);
-  node->second = build(A, mid, end, tolerance, leaf_size, granule, rng);
-  compress(A.block(begin, mid, mid - begin, end - mid), tolerance, rng, node->U12, node->V12);
-  compress(A.block(mid, begin, end - mid, mid - begin), tolerance, rng, node->U21, node->V21);
+  if (n <= leaf_size || mid == begin) return node;
+  node->first = bisections(begin, mid, leaf_size, granule);
+  node->second = bisections(mid, end, leaf_size, granule);
   return node;
+}
+
+/// The nodes `depth` levels below `node`: its bisections (`leaves` false) or leaves.
+void collect(HodlrMatrix::Node& node, int depth, bool leaves, std::vector<HodlrMatrix::Node*>& out) {
+  if (node.leaf()) {
+    if (leaves) out.push_back(&node);
+    return;
+  }
+  if (depth == 0 && !leaves) {
+    out.push_back(&node);
+    return;
+  }
+  collect(*node.first, depth - 1, leaves, out);
+  collect(*node.second, depth - 1, leaves, out);
+}
+
+/// Y -= (the off-diagonal blocks of the bisections less than `depth` levels below `node`) X:
+/// what the levels already compressed contribute to the products.
+void subtract_coarse(const HodlrMatrix::Node& node, int depth, const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) {
+  if (node.leaf() || depth == 0) return;
+  const HodlrMatrix::Node &a = *node.first, &b = *node.second;
+  const Eigen::Index n1 = a.end - a.begin, n2 = b.end - b.begin;
+  Y.middleRows(a.begin, n1).noalias() -= node.U12 * (node.V12.transpose() * X.middleRows(b.begin, n2));
+  Y.middleRows(b.begin, n2).noalias() -= node.U21 * (node.V21.transpose() * X.middleRows(a.begin, n1));
+  subtract_coarse(a, depth - 1, X, Y);
+  subtract_coarse(b, depth - 1, X, Y);
 }
 
 Eigen::VectorXd multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const Eigen::VectorXd>& x) {
@@ -136,8 +202,8 @@ std::unique_ptr<HodlrMatrix::Node> mixed(const HodlrMatrix::Node& a, const Eigen
   return node;
 }
 
-template <class F>
-void visit(const HodlrMatrix::Node& node, F&& f) {
+template <class Node, class F>
+void visit(Node& node, F&& f) {
   f(node);
   if (node.leaf()) return;
   visit(*node.first, f);
@@ -149,7 +215,102 @@ void visit(const HodlrMatrix::Node& node, F&& f) {
 HodlrMatrix::HodlrMatrix(const Eigen::MatrixXd& A, double tolerance, int leaf_size, int granule)
     : size_(A.rows()), granule_(granule) {
   std::mt19937 rng(20261125);
-  root_ = build(A, 0, size_, tolerance, std::max(leaf_size, 2 * granule), granule, rng);
+  root_ = bisections(0, size_, std::max(leaf_size, 2 * granule), granule);
+  visit(*root_, [&](Node& n) {
+    if (n.leaf()) {
+      n.dense = A.block(n.begin, n.begin, n.end - n.begin, n.end - n.begin);
+      return;
+    }
+    const Eigen::Index mid = n.second->begin, n1 = mid - n.begin, n2 = n.end - mid;
+    compress(A.block(n.begin, mid, n1, n2), tolerance, rng, n.U12, n.V12);
+    compress(A.block(mid, n.begin, n2, n1), tolerance, rng, n.U21, n.V21);
+  });
+}
+
+// Peeling (Lin, Lu and Ying, J. Comput. Phys. 230, 2011), level by level from the root: the
+// probes of one level are random on the second half of each of its bisections and zero
+// elsewhere, so that on the first halves A omega is the off-diagonal blocks' products plus
+// what the coarser levels' blocks contribute, which are known and subtracted. One block of
+// products per round serves all the level's bisections.
+HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double relative_tolerance, int leaf_size,
+                                   int granule) {
+  HodlrMatrix H;
+  H.size_ = size, H.granule_ = granule;
+  H.root_ = bisections(0, size, std::max(leaf_size, 2 * granule), granule);
+  std::vector<Node*> leaves;
+  collect(*H.root_, 0, true, leaves);
+  // The leaves' unit probes, all leaves at once (column c: each leaf's c-th row): their
+  // products scale the tolerance by the diagonal, and give the leaves once the blocks are known.
+  Eigen::Index width = 0;
+  for (const Node* leaf : leaves) width = std::max(width, leaf->end - leaf->begin);
+  Eigen::MatrixXd units = Eigen::MatrixXd::Zero(size, width);
+  for (const Node* leaf : leaves)
+    for (Eigen::Index c = 0; c < leaf->end - leaf->begin; ++c) units(leaf->begin + c, c) = 1.0;
+  Eigen::MatrixXd leaf_products = A(units);
+  double scale = 0;
+  for (const Node* leaf : leaves)
+    for (Eigen::Index c = 0; c < leaf->end - leaf->begin; ++c)
+      scale = std::max(scale, std::abs(leaf_products(leaf->begin + c, c)));
+  const double tolerance = relative_tolerance * scale;
+
+  std::mt19937 rng(20261125);
+  std::vector<Node*> level;
+  for (int depth = 0; level.clear(), collect(*H.root_, depth, false, level), !level.empty(); ++depth) {
+    std::vector<RangeFinder> ranges;
+    for (const Node* n : level) {
+      const Eigen::Index n1 = n->first->end - n->begin, n2 = n->end - n->second->begin;
+      ranges.emplace_back(n1, std::min(n1, n2));
+    }
+    const auto products = [&](const Eigen::MatrixXd& X) {
+      Eigen::MatrixXd Y = A(X);
+      subtract_coarse(*H.root_, depth, X, Y);
+      return Y;
+    };
+    for (bool open = true; open;) {  // the blocks A(first, second) by their ranges
+      Eigen::MatrixXd omega = Eigen::MatrixXd::Zero(size, probes);
+      for (std::size_t k = 0; k < level.size(); ++k)
+        if (!ranges[k].done) gaussian(omega.middleRows(level[k]->second->begin, level[k]->end - level[k]->second->begin), rng);
+      Eigen::MatrixXd Y = products(omega);
+      open = false;
+      for (std::size_t k = 0; k < level.size(); ++k) {
+        if (ranges[k].done) continue;
+        const Node& n = *level[k];
+        ranges[k].take(Y.middleRows(n.begin, n.first->end - n.begin), tolerance, true);
+        open = open || !ranges[k].done;
+      }
+    }
+    // A(second, first) Q = B^T Q (A symmetric), B ~ Q (B^T Q)^T; and A(second, first) = B^T.
+    Eigen::Index rank = 0;
+    for (const RangeFinder& r : ranges) rank = std::max(rank, r.Q.cols());
+    Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(size, rank);
+    for (std::size_t k = 0; k < level.size(); ++k)
+      Q.block(level[k]->begin, 0, ranges[k].Q.rows(), ranges[k].Q.cols()) = ranges[k].Q;
+    const Eigen::MatrixXd BtQ = rank > 0 ? products(Q) : Q;
+    for (std::size_t k = 0; k < level.size(); ++k) {
+      Node& n = *level[k];
+      const Eigen::Index n2 = n.end - n.second->begin;
+      truncate(ranges[k].Q, BtQ.block(n.second->begin, 0, n2, ranges[k].Q.cols()), tolerance, n.U12, n.V12);
+      n.U21 = n.V12, n.V21 = n.U12;
+    }
+  }
+  subtract_coarse(*H.root_, std::numeric_limits<int>::max(), units, leaf_products);
+  for (Node* leaf : leaves) leaf->dense = leaf_products.block(leaf->begin, 0, leaf->end - leaf->begin, leaf->end - leaf->begin);
+  return H;
+}
+
+Eigen::MatrixXd HodlrMatrix::diagonal_block(Eigen::Index first, Eigen::Index n) const {
+  const Node* node = root_.get();
+  while (!node->leaf()) node = first < node->second->begin ? node->first.get() : node->second.get();
+  RCCM_VERIFY(first + n <= node->end, "diagonal_block(): the block straddles two leaves");
+  return node->dense.block(first - node->begin, first - node->begin, n, n);
+}
+
+double HodlrMatrix::diagonal_scale() const {
+  double s = 0;
+  visit(*root_, [&](const Node& n) {
+    if (n.leaf()) s = std::max(s, n.dense.diagonal().cwiseAbs().maxCoeff());
+  });
+  return s;
 }
 
 HodlrMatrix::~HodlrMatrix() = default;

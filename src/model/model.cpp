@@ -95,14 +95,20 @@ Model::Model(const Config& cfg, Mesh mesh)
   mesh_.axisymmetric = cfg.hypothesis() == Hypothesis::Axisymmetric;
   materials_ = body_materials(cfg, mesh_);
   interface_ = make_interface(mesh_, cfg);
-  // The dense interface operators: W0 and the factor block it comes from, and below
-  // solver.compressed_min_nodes the exact step's matrix, its LU and its inverse, each (dim m)^2 doubles.
+  // W0 compressed from sparse solves on large interfaces, where the solver can use it (rccm
+  // and the 3D Newton step read W0 dense); otherwise dense, with the factor block it comes from,
+  // and below solver.compressed_min_nodes the exact step's matrix, its LU and its inverse,
+  // each (dim m)^2 doubles.
+  const bool compress = interface_.size() >= cfg.solver.compressed_min_nodes &&
+                        (cfg.solver.method == ContactMethod::Bipotential ||
+                         (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2));
   const double m = interface_.layout.offset(interface_.size());
-  const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes &&
-                     interface_.size() < cfg.solver.compressed_min_nodes;
-  require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
-                 std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
-                 "use a coarser interface mesh, or solver.active_set_max_nodes below the contact node count");
+  const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes;
+  if (!compress)
+    require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
+                   std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
+                   "use a coarser interface mesh, solver.compressed_min_nodes below the contact node count, or "
+                   "solver.active_set_max_nodes below it");
   loads_ = make_load_cases(mesh_, cfg);
   supports_ = prescribed_dofs(loads_);
   for (int d : axis_supports(cfg, mesh_, size_))
@@ -112,17 +118,16 @@ Model::Model(const Config& cfg, Mesh mesh)
   check_prescribed_gaps(cfg);
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);
-  std::vector<int> interface_dofs;
+  std::vector<int> interface_dofs;  // ordered last in the factor, for the dense W0
   for (const ContactPair& c : interface_.pairs)
     for (int node : {c.node, c.opposite})
-      for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
+      for (int x = 0; !compress && node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
   try {
     body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), supports_, interface_dofs);
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }
-  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_,
-                                                interface_.size() >= cfg.solver.compressed_min_nodes);
+  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress);
   D1_ = interface_.spring_stiffness();
   g0_.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) g0_[i] = interface_.pairs[i].g0;

@@ -42,6 +42,56 @@ TEST_CASE("HODLR: products and solves agree with the dense matrix to the compres
   CHECK((A * X - B).norm() <= 1e-10 * B.norm());
 }
 
+TEST_CASE("HODLR: a symmetric matrix compressed from its products alone (peeling) is the matrix to the tolerance", "[hodlr]") {
+  // The kernel is symmetric: by its products the same ranks as from its blocks, in a few
+  // blocks of products per level, never m of them.
+  const int m = 640;
+  const Eigen::MatrixXd A = kernel_matrix(m);
+  Eigen::Index columns = 0;
+  const auto products = [&](const Eigen::MatrixXd& X) {
+    columns += X.cols();
+    return Eigen::MatrixXd(A * X);
+  };
+  const double relative = 1e-13, scale = A.diagonal().maxCoeff();
+  const HodlrMatrix P = HodlrMatrix::symmetric(m, products, relative, 32, 2);
+  const HodlrMatrix D(A, relative * scale, 32, 2);
+  REQUIRE(P.size() == m);
+  CHECK(P.granule() == 2);
+  CHECK(P.max_rank() <= D.max_rank() + 2);
+  CHECK(P.max_rank() >= D.max_rank() - 2);
+  CHECK(columns < m / 2);
+  CHECK(P.diagonal_scale() == Approx(scale).epsilon(1e-13));
+  for (Eigen::Index first : {0, 30, 320, 638})
+    CHECK((P.diagonal_block(first, 2) - A.block(first, first, 2, 2)).norm() <= 10 * relative * scale);
+  std::srand(4);
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::VectorXd x = k == 0 ? Eigen::VectorXd(Eigen::VectorXd::Unit(m, 333)) : Eigen::VectorXd(Eigen::VectorXd::Random(m));
+    CHECK((P.multiply(x) - A * x).norm() <= 100 * relative * scale * x.norm());
+  }
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(m);
+  CHECK((A * HodlrSolver(P).solve(b) - b).norm() <= 1e-10 * b.norm());
+}
+
+TEST_CASE("HODLR: peeling a matrix with rank-one and uncoupled blocks", "[hodlr]") {
+  // diag(d) + u v^T symmetric (u = v): every off-diagonal block has rank one; with the halves
+  // uncoupled, rank zero; the coarser levels' blocks must be subtracted exactly for the finer
+  // ones to stay at rank one.
+  const int m = 256;
+  std::srand(5);
+  const Eigen::VectorXd u = Eigen::VectorXd::Random(m);
+  Eigen::MatrixXd A = u * u.transpose();
+  A.diagonal().array() += 3.0;
+  const auto products = [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); };
+  const HodlrMatrix H = HodlrMatrix::symmetric(m, products, 1e-13, 16, 1);
+  CHECK(H.max_rank() == 1);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(m);
+  CHECK((A * HodlrSolver(H).solve(b) - b).norm() <= 1e-12 * b.norm());
+  A.topRightCorner(128, 128).setZero(), A.bottomLeftCorner(128, 128).setZero();
+  const HodlrMatrix Z = HodlrMatrix::symmetric(m, products, 1e-13, 16, 1);
+  CHECK(Z.max_rank() == 1);
+  CHECK((Z.multiply(b) - A * b).norm() <= 1e-12 * (A * b).norm());
+}
+
 TEST_CASE("HODLR: exact on a matrix whose off-diagonal blocks have rank one", "[hodlr]") {
   // A = diag(d) + u v^T: every off-diagonal block has rank one.
   const int m = 256;

@@ -1,9 +1,10 @@
 // Elimination of the bulk onto the interface (docs/MODEL.md s4):
 //   u_c = W0 y + q0(t),  W0 = P K0^-1 P^T,  q0(t) = sum_k amplitude_k(t) P U_k,
 // where U_k is the displacement under load case k with the interface forces zero and the
-// springs at beta = 1 (in K0). Built once per run: one CHOLMOD factorization with the interface
-// DOFs last (W0 from its trailing block), one solve per load case. On large interfaces W0 is
-// also kept compressed (contact/delassus.hpp).
+// springs at beta = 1 (in K0). Built once per run: one CHOLMOD factorization, one solve per
+// load case, and W0 either dense from the factor's trailing block (the interface DOFs ordered
+// last) or, on large interfaces, compressed from blocks of sparse solves without ever being
+// formed (contact/delassus.hpp).
 #pragma once
 
 #include "rccm/contact/delassus.hpp"
@@ -13,16 +14,19 @@
 
 #include <Eigen/Core>
 
+#include <memory>
 #include <vector>
 
 namespace rccm {
 
 class Condensation {
  public:
+  /// `compress_W0`: W0 compressed from sparse solves, never dense (the body's factor may then
+  /// be ordered freely); otherwise dense (the interface DOFs ordered last in the factor).
   Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
                bool compress_W0);
 
-  const DelassusOperator& W0() const { return W0_; }
+  const DelassusOperator& W0() const { return *W0_; }
 
   /// Free response at time t, mm.
   Eigen::VectorXd q0(double t) const;
@@ -36,7 +40,7 @@ class Condensation {
   std::vector<TimeFunction> amplitudes_;
   Eigen::MatrixXd U_;  // full displacement of each unit load case (columns)
   Eigen::MatrixXd Q_;  // P U_k (columns)
-  DenseDelassus W0_;
+  std::unique_ptr<DelassusOperator> W0_;
 };
 
 }  // namespace rccm

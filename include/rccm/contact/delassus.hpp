@@ -49,30 +49,42 @@ class DelassusOperator {
   virtual const HodlrMatrix* compressed() const { return nullptr; }
 };
 
-/// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few thousand pairs.
-/// Compressed besides on large interfaces: its products and Gauss-Seidel passes then cost
-/// about m r log m instead of m^2 (the off-diagonal blocks' rank r is 15-20 on an interface
-/// line), to an accuracy of tuning::hodlr_accuracy relative to its diagonal; columns and
-/// blocks stay exact.
+/// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few hundred pairs.
 class DenseDelassus final : public DelassusOperator {
  public:
   explicit DenseDelassus(Eigen::MatrixXd W) : W_(std::move(W)) {}
-  /// Keeps W0 compressed besides, a contact pair's `granule` rows in one block.
-  void compress(int granule);
   Eigen::Index size() const override { return W_.rows(); }
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
   void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.block(first, first, n, n); }
   double diagonal_scale() const override { return W_.diagonal().cwiseAbs().maxCoeff(); }
   const Eigen::MatrixXd* dense() const override { return &W_; }
-  const HodlrMatrix* compressed() const override { return compressed_ ? &*compressed_ : nullptr; }
-  /// Compressed: by the hierarchy (m r log m per pass instead of m^2).
-  void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
-                    Eigen::VectorXd& u) const override;
 
  private:
   Eigen::MatrixXd W_;
-  std::optional<HodlrMatrix> compressed_;
+};
+
+/// W0 known only compressed (la/hodlr.hpp), never formed: memory, products and Gauss-Seidel
+/// passes about m r log m instead of m^2 (the off-diagonal blocks' rank r is 15-20 on an
+/// interface line), to an accuracy of tuning::hodlr_accuracy relative to its diagonal. The
+/// large-interface default (solver.compressed_min_nodes); the pairs' blocks are the leaves'.
+class CompressedDelassus final : public DelassusOperator {
+ public:
+  explicit CompressedDelassus(HodlrMatrix W);
+  Eigen::Index size() const override { return W_.size(); }
+  void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
+  /// By a product (m r log m): the sweeps go through gauss_seidel instead.
+  void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
+  /// By the hierarchy: the leaves' columns, then each bisection's blocks once.
+  void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
+                    Eigen::VectorXd& u) const override;
+  LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
+  double diagonal_scale() const override { return diagonal_scale_; }
+  const HodlrMatrix* compressed() const override { return &W_; }
+
+ private:
+  HodlrMatrix W_;
+  double diagonal_scale_;
 };
 
 /// W0 stored as a sparse matrix (memory and products proportional to its nonzeros): the

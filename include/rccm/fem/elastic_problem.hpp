@@ -32,6 +32,10 @@ class ElasticProblem {
   /// P K0^-1 P^T = G^T G with G = L_CC^-1 P_C^T: one dense triangular solve (docs/MODEL.md s4).
   Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
 
+  /// P K0^-1 P^T Y for a block of columns Y, by sparse solves: the flexibility's products
+  /// without forming it (any ordering of the factor).
+  Eigen::MatrixXd flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const;
+
  private:
   /// Restriction of full-size columns to the free DOFs, and its transpose.
   Eigen::MatrixXd restrict_free(const Eigen::MatrixXd& full) const;

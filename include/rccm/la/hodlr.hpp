@@ -21,6 +21,14 @@ class HodlrMatrix {
   /// multiples of `granule` (a contact pair's rows stay in one block), off-diagonal blocks
   /// to an absolute accuracy of `tolerance` (a randomized range finder, deterministic seed).
   HodlrMatrix(const Eigen::MatrixXd& A, double tolerance, int leaf_size, int granule);
+  /// Products A X of a matrix for a block of columns X.
+  using Products = std::function<Eigen::MatrixXd(const Eigen::MatrixXd& X)>;
+  /// Compresses the symmetric matrix A known only by its products, never formed (peeling:
+  /// about (r log m + leaf_size) columns of products in blocks of a few, r the blocks'
+  /// rank): leaves and bisections as above, off-diagonal blocks to `relative_tolerance` of
+  /// A's largest diagonal entry.
+  static HodlrMatrix symmetric(Eigen::Index size, const Products& A, double relative_tolerance, int leaf_size,
+                               int granule);
   ~HodlrMatrix();
   HodlrMatrix(HodlrMatrix&&) noexcept;
   HodlrMatrix& operator=(HodlrMatrix&&) noexcept;
@@ -39,6 +47,10 @@ class HodlrMatrix {
   /// Costs m r log m per pass (the leaves' columns, then each bisection's blocks once).
   void gauss_seidel(const std::function<void(Eigen::Index first)>& visit, const Eigen::VectorXd& x,
                     Eigen::VectorXd& y) const;
+  /// The diagonal block A(first .. first + n - 1, same), within one leaf (a granule's block).
+  Eigen::MatrixXd diagonal_block(Eigen::Index first, Eigen::Index n) const;
+  /// The largest magnitude on the diagonal.
+  double diagonal_scale() const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
   Eigen::Index stored() const;
