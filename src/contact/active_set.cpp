@@ -83,6 +83,26 @@ void ActiveSetSystem<dim>::rows(const ContactProblem& pb, const PairRows& kind, 
 }
 
 template <int dim>
+HodlrMatrix ActiveSetSystem<dim>::mixed(const ContactProblem& pb, const Pattern& pattern) const {
+  const Eigen::Index m = pb.W0->size();
+  Eigen::MatrixXd Cw(dim, m), Cy(dim, m);
+  for (int i = 0; i < pb.size(); ++i) {
+    Local w, y;
+    mixing(pb, pattern[i], i, w, y);
+    Cw.template middleCols<dim>(Eigen::Index(dim) * i) = w, Cy.template middleCols<dim>(Eigen::Index(dim) * i) = y;
+  }
+  return pb.W0->compressed()->rows_mixed(Cw, Cy);
+}
+
+template <int dim>
+void ActiveSetSystem<dim>::record(const ContactProblem& pb, const Pattern& pattern, int i) {
+  const Eigen::Index first = Eigen::Index(dim) * i;
+  factorized_[i] = pattern[i];
+  E0_.template segment<dim>(first) = pb.D1.template segment<dim>(first) - pb.Dbeta.template segment<dim>(first);
+  mubar0_[i] = pb.mubar[i];
+}
+
+template <int dim>
 bool ActiveSetSystem<dim>::rows_moved(const ContactProblem& pb, const PairRows& kind, int i) const {
   if (kind.status == Status::Stick) return false;  // u rows: no beta in them
   const Eigen::Index first = Eigen::Index(dim) * i;
@@ -102,7 +122,15 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
   const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = pb.W0->size();
   D_.resize(c, m);
   if (c == 0) return true;
-  if (hodlr_) return false;  // a new compressed factorization costs less than a correction
+  if (hodlr_) {  // compressed: the leaves and bisections that hold changed rows refactorized
+    std::vector<Eigen::Index> rows;
+    for (int i : changed)
+      for (int d = 0; d < dim; ++d) rows.push_back(Eigen::Index(dim) * i + d);
+    hodlr_->refactorize(mixed(pb, pattern), rows);
+    for (int i : changed) record(pb, pattern, i);
+    D_.resize(0, m);
+    return true;
+  }
   if (2 * c > m) return false;  // a new factorization costs less
   // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1
   // (gathered from the inverse once there is one, c solves with the LU before).
@@ -128,11 +156,8 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
   A0_inverse_.noalias() -= Z_ * correction;
   for (std::size_t k = 0; k < changed.size(); ++k) {
     const int i = changed[k];
-    const Eigen::Index first = Eigen::Index(dim) * i;
-    A0_.template middleRows<dim>(first) += D_.template middleRows<dim>(dim * static_cast<Eigen::Index>(k));
-    factorized_[i] = pattern[i];
-    E0_.template segment<dim>(first) = pb.D1.template segment<dim>(first) - pb.Dbeta.template segment<dim>(first);
-    mubar0_[i] = pb.mubar[i];
+    A0_.template middleRows<dim>(Eigen::Index(dim) * i) += D_.template middleRows<dim>(dim * static_cast<Eigen::Index>(k));
+    record(pb, pattern, i);
   }
   D_.resize(0, m);
   return true;
@@ -161,14 +186,8 @@ template <int dim>
 void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pattern) {
   const Eigen::Index m = pb.W0->size();
   hodlr_.reset();
-  if (const HodlrMatrix* W0 = pb.W0->compressed()) {
-    Eigen::MatrixXd Cw(dim, m), Cy(dim, m);
-    for (int i = 0; i < pb.size(); ++i) {
-      Local w, y;
-      mixing(pb, pattern[i], i, w, y);
-      Cw.template middleCols<dim>(Eigen::Index(dim) * i) = w, Cy.template middleCols<dim>(Eigen::Index(dim) * i) = y;
-    }
-    hodlr_.emplace(W0->rows_mixed(Cw, Cy));
+  if (pb.W0->compressed()) {
+    hodlr_.emplace(mixed(pb, pattern));
     A0_.resize(0, 0);
   } else {
     A0_.resize(m, m);

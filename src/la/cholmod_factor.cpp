@@ -54,13 +54,12 @@ CholmodFactor::CholmodFactor(const Eigen::SparseMatrix<double>& A, const std::ve
 CholmodFactor::~CholmodFactor() = default;
 
 Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& b) const {
-  Eigen::MatrixXd x(b.rows(), b.cols());
-  if (b.cols() == 0) return x;
-  Eigen::MatrixXd rhs = b;
-  cholmod_dense B = Eigen::viewAsCholmod(rhs);
+  if (b.cols() == 0) return Eigen::MatrixXd(b.rows(), 0);
+  // A view of b: cholmod_solve reads B and writes X.
+  cholmod_dense B = Eigen::viewAsCholmod(const_cast<Eigen::MatrixXd&>(b));
   cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->L, &B, &impl_->cm);
   RCCM_VERIFY(X != nullptr, "cholmod_solve");
-  x = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(X->x), b.rows(), b.cols());
+  Eigen::MatrixXd x = Eigen::Map<const Eigen::MatrixXd>(static_cast<const double*>(X->x), b.rows(), b.cols());
   cholmod_free_dense(&X, &impl_->cm);
   return x;
 }

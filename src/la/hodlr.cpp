@@ -372,30 +372,51 @@ struct HodlrSolver::Node {
 
 namespace {
 
-std::unique_ptr<HodlrSolver::Node> factorize(const HodlrMatrix::Node& a) {
+/// The solver's tree, the matrix's shape, nothing factorized yet.
+std::unique_ptr<HodlrSolver::Node> shape(const HodlrMatrix::Node& a) {
   auto node = std::make_unique<HodlrSolver::Node>();
-  if (a.leaf()) {
-    node->lu.compute(a.dense);
-    return node;
-  }
-  node->first = factorize(*a.first);
-  node->second = factorize(*a.second);
+  if (a.leaf()) return node;
   node->n1 = a.first->end - a.first->begin;
-  node->X1 = node->first->solve(a.U12);
-  node->X2 = node->second->solve(a.U21);
-  node->V12 = a.V12, node->V21 = a.V21;
-  const Eigen::Index r1 = a.U12.cols(), r2 = a.U21.cols();
-  if (r1 + r2 == 0) return node;
-  Eigen::MatrixXd K = Eigen::MatrixXd::Identity(r1 + r2, r1 + r2);
-  K.topRightCorner(r1, r2) = a.V12.transpose() * node->X2;
-  K.bottomLeftCorner(r2, r1) = a.V21.transpose() * node->X1;
-  node->capacitance.compute(K);
+  node->first = shape(*a.first);
+  node->second = shape(*a.second);
   return node;
+}
+
+/// Factorizes the nodes whose rows [begin, end) are touched(begin, end), keeping the others'.
+template <class Touched>
+void factorize(HodlrSolver::Node& node, const HodlrMatrix::Node& a, const Touched& touched) {
+  if (!touched(a.begin, a.end)) return;
+  if (a.leaf()) {
+    node.lu.compute(a.dense);
+    return;
+  }
+  factorize(*node.first, *a.first, touched);
+  factorize(*node.second, *a.second, touched);
+  if (touched(a.first->begin, a.first->end)) node.X1 = node.first->solve(a.U12);
+  if (touched(a.second->begin, a.second->end)) node.X2 = node.second->solve(a.U21);
+  node.V12 = a.V12, node.V21 = a.V21;
+  const Eigen::Index r1 = a.U12.cols(), r2 = a.U21.cols();
+  if (r1 + r2 == 0) return;
+  Eigen::MatrixXd K = Eigen::MatrixXd::Identity(r1 + r2, r1 + r2);
+  K.topRightCorner(r1, r2) = a.V12.transpose() * node.X2;
+  K.bottomLeftCorner(r2, r1) = a.V21.transpose() * node.X1;
+  node.capacitance.compute(K);
 }
 
 }  // namespace
 
-HodlrSolver::HodlrSolver(const HodlrMatrix& A) : root_(factorize(*A.root_)) {}
+HodlrSolver::HodlrSolver(const HodlrMatrix& A) : root_(shape(*A.root_)) {
+  factorize(*root_, *A.root_, [](Eigen::Index, Eigen::Index) { return true; });
+}
+
+void HodlrSolver::refactorize(const HodlrMatrix& A, const std::vector<Eigen::Index>& rows) {
+  RCCM_VERIFY(std::is_sorted(rows.begin(), rows.end()), "refactorize(): the changed rows must be sorted");
+  factorize(*root_, *A.root_, [&](Eigen::Index begin, Eigen::Index end) {
+    const auto it = std::lower_bound(rows.begin(), rows.end(), begin);
+    return it != rows.end() && *it < end;
+  });
+}
+
 HodlrSolver::~HodlrSolver() = default;
 HodlrSolver::HodlrSolver(HodlrSolver&&) noexcept = default;
 HodlrSolver& HodlrSolver::operator=(HodlrSolver&&) noexcept = default;

@@ -143,6 +143,38 @@ TEST_CASE("HODLR: rows mixed within pairs (the exact step's matrices) keep the r
   CHECK((A * xm - b).norm() <= 1e-9 * b.norm());
 }
 
+TEST_CASE("HODLR: refactorized where rows changed, the factorization solves the new matrix, elsewhere it is kept", "[hodlr]") {
+  // Pairs' rows mixed as the exact step's (stick: W's rows; separated: -E W + I), one pattern,
+  // then another in which a few pairs (in two leaves) changed status.
+  const int m = 512;
+  const Eigen::MatrixXd W = kernel_matrix(m);
+  const HodlrMatrix Hw(W, 1e-13 * W.diagonal().maxCoeff(), 32, 2);
+  const auto mixed = [&](const std::vector<int>& separated, Eigen::MatrixXd& dense) {
+    Eigen::MatrixXd Cw(2, m), Cy = Eigen::MatrixXd::Zero(2, m);
+    for (int i = 0; i < m / 2; ++i) Cw.middleCols<2>(2 * i).setIdentity();
+    for (int i : separated) Cw.middleCols<2>(2 * i) = -0.5 * Eigen::Matrix2d::Identity(), Cy.middleCols<2>(2 * i).setIdentity();
+    dense = W;
+    for (int i = 0; i < m / 2; ++i) {
+      dense.middleRows<2>(2 * i) = Cw.middleCols<2>(2 * i) * W.middleRows<2>(2 * i);
+      dense.block<2, 2>(2 * i, 2 * i) += Cy.middleCols<2>(2 * i);
+    }
+    return Hw.rows_mixed(Cw, Cy);
+  };
+  Eigen::MatrixXd A, B;
+  const HodlrMatrix Ha = mixed({3, 4, 100}, A);
+  const HodlrMatrix Hb = mixed({3, 4, 100, 101, 200}, B);  // pairs 101 and 200 changed: rows 202, 203, 400, 401
+  std::srand(6);
+  const Eigen::VectorXd b = Eigen::VectorXd::Random(m);
+  HodlrSolver S(Ha);
+  REQUIRE((A * S.solve(b) - b).norm() <= 1e-9 * b.norm());
+  S.refactorize(Hb, {});  // nothing changed by this account: the factorization of A stays
+  CHECK((A * S.solve(b) - b).norm() <= 1e-9 * b.norm());
+  CHECK((B * S.solve(b) - b).norm() > 1e-6 * b.norm());
+  S.refactorize(Hb, {202, 203, 400, 401});
+  CHECK((B * S.solve(b) - b).norm() <= 1e-9 * b.norm());
+  CHECK((S.solve(b) - HodlrSolver(Hb).solve(b)).norm() <= 1e-12 * S.solve(b).norm());
+}
+
 TEST_CASE("HODLR: uncoupled halves have rank zero", "[hodlr]") {
   Eigen::MatrixXd A = kernel_matrix(128);
   A.topRightCorner(64, 64).setZero(), A.bottomLeftCorner(64, 64).setZero();

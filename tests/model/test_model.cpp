@@ -243,6 +243,7 @@ solver = { tolerance = 1.0e-12; };
     CHECK(std::count(a.status.begin(), a.status.end(), Status::Stick) > 0);
     CHECK(std::count(a.status.begin(), a.status.end(), Status::Slide) > 0);
     CHECK(a.status == b.status);
+    CHECK(b.iterations <= a.iterations + 2);  // the compressed exact step, not sweeps alone
     previous_dense = &a, previous_compressed = &b;
   }
 }

@@ -15,9 +15,10 @@
 // When W0 is kept compressed (solver.compressed_min_nodes pairs on; la/hodlr.hpp: the off-diagonal
 // blocks of an interface line's flexibility have low rank r), A0 = C_y + C_w W0 is mixed
 // from it row by row and factorized compressed, at about m r^2 log^2 m instead of m^3, without
-// the dense A0: no explicit inverse, no pending corrections (a new compressed factorization
-// costs less), and the compressed solve is a preconditioner that refinement and GMRES bring
-// to the rows of W0's products (themselves compressed, to tuning::hodlr_accuracy).
+// the dense A0: no explicit inverse, no pending corrections (the leaves and bisections that
+// hold changed rows are refactorized instead, the others kept), and the compressed solve is a
+// preconditioner that refinement and GMRES bring to the rows of W0's products (themselves
+// compressed, to tuning::hodlr_accuracy).
 // Written for the pairs' dimension (2 or 3) as a template, as the solver's inner loops.
 #pragma once
 
@@ -69,6 +70,10 @@ class ActiveSetSystem {
   /// Pair i's rows of the pattern's matrix, written into `out`.
   template <class Rows>
   void rows(const ContactProblem& pb, const PairRows& kind, int i, Rows&& out) const;
+  /// The pattern's matrix C_y + C_w W0 mixed from W0's compression.
+  HodlrMatrix mixed(const ContactProblem& pb, const Pattern& pattern) const;
+  /// Pair i's rows are now factorized as the pattern and the problem's beta give them.
+  void record(const ContactProblem& pb, const Pattern& pattern, int i);
   /// Whether pair i's rows moved since they were factorized by more than refinement absorbs cheaply.
   bool rows_moved(const ContactProblem& pb, const PairRows& kind, int i) const;
   /// Sets up the pending correction for the changed pairs, or folds it into A0 and its

@@ -12,6 +12,7 @@
 
 #include <functional>
 #include <memory>
+#include <vector>
 
 namespace rccm {
 
@@ -74,6 +75,10 @@ class HodlrSolver {
   HodlrSolver(HodlrSolver&&) noexcept;
   HodlrSolver& operator=(HodlrSolver&&) noexcept;
 
+  /// The factorization of A, a matrix of the factorized one's shape that differs from it in
+  /// the given rows (sorted) only: the leaves and bisections that hold none keep theirs
+  /// (a change within one leaf costs about m r log m instead of m r^2 log^2 m).
+  void refactorize(const HodlrMatrix& A, const std::vector<Eigen::Index>& rows);
   /// A^-1 B (B's columns); not finite when A (or one of its diagonal blocks) is singular.
   Eigen::MatrixXd solve(const Eigen::MatrixXd& B) const;
 
