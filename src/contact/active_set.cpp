@@ -83,15 +83,15 @@ void ActiveSetSystem<dim>::rows(const ContactProblem& pb, const PairRows& kind, 
 }
 
 template <int dim>
-HodlrMatrix ActiveSetSystem<dim>::mixed(const ContactProblem& pb, const Pattern& pattern) const {
+void ActiveSetSystem<dim>::mixing(const ContactProblem& pb, const Pattern& pattern, Eigen::MatrixXd& Cw,
+                                  Eigen::MatrixXd& Cy) const {
   const Eigen::Index m = pb.W0->size();
-  Eigen::MatrixXd Cw(dim, m), Cy(dim, m);
+  Cw.resize(dim, m), Cy.resize(dim, m);
   for (int i = 0; i < pb.size(); ++i) {
     Local w, y;
     mixing(pb, pattern[i], i, w, y);
     Cw.template middleCols<dim>(Eigen::Index(dim) * i) = w, Cy.template middleCols<dim>(Eigen::Index(dim) * i) = y;
   }
-  return pb.W0->compressed()->rows_mixed(Cw, Cy);
 }
 
 template <int dim>
@@ -122,11 +122,16 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
   const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = pb.W0->size();
   D_.resize(c, m);
   if (c == 0) return true;
-  if (hodlr_) {  // compressed: the leaves and bisections that hold changed rows refactorized
-    std::vector<Eigen::Index> rows;
-    for (int i : changed)
+  if (hodlr_) {  // compressed: the changed rows mixed again, the leaves and bisections that hold them refactorized
+    std::vector<Eigen::Index> granules, rows;
+    for (int i : changed) {
+      granules.push_back(Eigen::Index(dim) * i);
       for (int d = 0; d < dim; ++d) rows.push_back(Eigen::Index(dim) * i + d);
-    hodlr_->refactorize(mixed(pb, pattern), rows);
+    }
+    Eigen::MatrixXd Cw, Cy;
+    mixing(pb, pattern, Cw, Cy);
+    mixed_->remix_rows(*pb.W0->compressed(), Cw, Cy, granules);
+    hodlr_->refactorize(*mixed_, rows);
     for (int i : changed) record(pb, pattern, i);
     D_.resize(0, m);
     return true;
@@ -186,8 +191,12 @@ template <int dim>
 void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pattern) {
   const Eigen::Index m = pb.W0->size();
   hodlr_.reset();
-  if (pb.W0->compressed()) {
-    hodlr_.emplace(mixed(pb, pattern));
+  mixed_.reset();
+  if (const HodlrMatrix* W0 = pb.W0->compressed()) {
+    Eigen::MatrixXd Cw, Cy;
+    mixing(pb, pattern, Cw, Cy);
+    mixed_.emplace(W0->rows_mixed(Cw, Cy));
+    hodlr_.emplace(*mixed_);
     A0_.resize(0, 0);
   } else {
     A0_.resize(m, m);

@@ -202,6 +202,25 @@ std::unique_ptr<HodlrMatrix::Node> mixed(const HodlrMatrix::Node& a, const Eigen
   return node;
 }
 
+/// node = C_y + C_w a again on the granule at row `first` (node mixed from a before).
+void remix(HodlrMatrix::Node& node, const HodlrMatrix::Node& a, const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy,
+           Eigen::Index first, int g) {
+  const auto C = Cw.middleCols(first, g);
+  if (a.leaf()) {
+    const Eigen::Index r = first - a.begin;
+    node.dense.middleRows(r, g).noalias() = C * a.dense.middleRows(r, g);
+    node.dense.block(r, r, g, g) += Cy.middleCols(first, g);
+    return;
+  }
+  if (first < a.second->begin) {
+    node.U12.middleRows(first - a.begin, g).noalias() = C * a.U12.middleRows(first - a.begin, g);
+    remix(*node.first, *a.first, Cw, Cy, first, g);
+  } else {
+    node.U21.middleRows(first - a.second->begin, g).noalias() = C * a.U21.middleRows(first - a.second->begin, g);
+    remix(*node.second, *a.second, Cw, Cy, first, g);
+  }
+}
+
 template <class Node, class F>
 void visit(Node& node, F&& f) {
   f(node);
@@ -329,6 +348,14 @@ HodlrMatrix HodlrMatrix::rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::Matr
   out.size_ = size_, out.granule_ = granule_;
   out.root_ = mixed(*root_, Cw, Cy, granule_);
   return out;
+}
+
+void HodlrMatrix::remix_rows(const HodlrMatrix& A, const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy,
+                             const std::vector<Eigen::Index>& granules) {
+  for (Eigen::Index first : granules) {
+    RCCM_VERIFY(first % granule_ == 0 && first < size_, "remix_rows(): not the first row of a granule");
+    rccm::remix(*root_, *A.root_, Cw, Cy, first, granule_);
+  }
 }
 
 int HodlrMatrix::max_rank() const {

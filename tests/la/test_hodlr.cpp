@@ -149,8 +149,9 @@ TEST_CASE("HODLR: refactorized where rows changed, the factorization solves the 
   const int m = 512;
   const Eigen::MatrixXd W = kernel_matrix(m);
   const HodlrMatrix Hw(W, 1e-13 * W.diagonal().maxCoeff(), 32, 2);
+  Eigen::MatrixXd Cw(2, m), Cy(2, m);
   const auto mixed = [&](const std::vector<int>& separated, Eigen::MatrixXd& dense) {
-    Eigen::MatrixXd Cw(2, m), Cy = Eigen::MatrixXd::Zero(2, m);
+    Cy.setZero();
     for (int i = 0; i < m / 2; ++i) Cw.middleCols<2>(2 * i).setIdentity();
     for (int i : separated) Cw.middleCols<2>(2 * i) = -0.5 * Eigen::Matrix2d::Identity(), Cy.middleCols<2>(2 * i).setIdentity();
     dense = W;
@@ -173,6 +174,12 @@ TEST_CASE("HODLR: refactorized where rows changed, the factorization solves the 
   S.refactorize(Hb, {202, 203, 400, 401});
   CHECK((B * S.solve(b) - b).norm() <= 1e-9 * b.norm());
   CHECK((S.solve(b) - HodlrSolver(Hb).solve(b)).norm() <= 1e-12 * S.solve(b).norm());
+  // The same matrix by mixing A's matrix again on the changed pairs' rows only.
+  HodlrMatrix Hr = mixed({3, 4, 100}, A);
+  mixed({3, 4, 100, 101, 200}, B);  // Cw, Cy of B
+  Hr.remix_rows(Hw, Cw, Cy, {202, 400});
+  for (const Eigen::VectorXd& x : {Eigen::VectorXd(b), Eigen::VectorXd(Eigen::VectorXd::Unit(m, 203)), Eigen::VectorXd(Eigen::VectorXd::Unit(m, 401))})
+    CHECK((Hr.multiply(x) - Hb.multiply(x)).norm() <= 1e-14 * (B * x).norm());
 }
 
 TEST_CASE("HODLR: uncoupled halves have rank zero", "[hodlr]") {

@@ -70,8 +70,8 @@ class ActiveSetSystem {
   /// Pair i's rows of the pattern's matrix, written into `out`.
   template <class Rows>
   void rows(const ContactProblem& pb, const PairRows& kind, int i, Rows&& out) const;
-  /// The pattern's matrix C_y + C_w W0 mixed from W0's compression.
-  HodlrMatrix mixed(const ContactProblem& pb, const Pattern& pattern) const;
+  /// All pairs' C_w and C_y side by side (dim x m each), for W0's compression.
+  void mixing(const ContactProblem& pb, const Pattern& pattern, Eigen::MatrixXd& Cw, Eigen::MatrixXd& Cy) const;
   /// Pair i's rows are now factorized as the pattern and the problem's beta give them.
   void record(const ContactProblem& pb, const Pattern& pattern, int i);
   /// Whether pair i's rows moved since they were factorized by more than refinement absorbs cheaply.
@@ -98,7 +98,8 @@ class ActiveSetSystem {
   Eigen::VectorXd E0_, mubar0_;          // the E = D1 - D(beta) and mubar of A0_'s rows
   Eigen::MatrixXd A0_, A0_inverse_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of A0_ as factorized (before any fold)
-  std::optional<HodlrSolver> hodlr_;        // of A0 compressed, instead of A0_ and lu_ (W0 compressed)
+  std::optional<HodlrMatrix> mixed_;        // A0 compressed (W0 compressed), mixed from W0's compression
+  std::optional<HodlrSolver> hodlr_;        // its factorization, instead of A0_ and lu_
   bool inverse_ready_ = false;
   int reuses_ = 0;  // updates since the factorization
   // Pending correction A = A0 + S D (S: unit columns of the changed rows), Z = A0^-1 S.

@@ -40,6 +40,10 @@ class HodlrMatrix {
   /// given side by side (granule x size): the off-diagonal blocks keep their ranks, only the
   /// leaves and the left factors U change (m r work, no recompression).
   HodlrMatrix rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const;
+  /// This matrix, mixed from A by rows_mixed, mixed again from Cw and Cy on the granules that
+  /// begin at the given rows only (about g (leaf + r log m) work per granule).
+  void remix_rows(const HodlrMatrix& A, const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy,
+                  const std::vector<Eigen::Index>& granules);
   /// y = A x.
   Eigen::VectorXd multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
   /// A Gauss-Seidel pass in the order of the granules: visit(first) changes x's granule at
