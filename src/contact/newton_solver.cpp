@@ -261,8 +261,8 @@ class NewtonSolver::Iteration {
 
 ContactSolution NewtonSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
                                           const Eigen::VectorXd& u_start) {
-  if (!pb.W0->dense())
-    throw SolveError("the Newton contact solver needs the dense W0; this W0 is sparse: use solver.method = \"bipotential\"");
+  if (!pb.W0->dense() && (pb.layout.dim == 3 || !pb.W0->compressed()))  // 2D: the active-set system takes either
+    throw SolveError("the Newton contact solver needs a dense W0 (or in 2D a compressed one); this W0 is not: use solver.method = \"bipotential\"");
   return pb.layout.dim == 2 ? solve_in<2>(pb, Rbar_start, u_start) : solve_in<3>(pb, Rbar_start, u_start);
 }
 

@@ -164,7 +164,7 @@ class RccmSolver::Iteration {
 
 const Eigen::MatrixXd& RccmSolver::stiffness(const ContactProblem& pb) {
   const Eigen::MatrixXd* W0 = pb.W0->dense();
-  if (!W0) throw SolveError("the rccm solver inverts W0 and needs it dense; this W0 is sparse: use solver.method = \"bipotential\"");
+  if (!W0) throw SolveError("the rccm solver inverts W0 and needs it dense; this W0 is sparse or compressed: use solver.method = \"bipotential\"");
   if (W0_.rows() == W0->rows() && W0_ == *W0) return Kc_;
   // A prescribed component (its row and column of W0 zero) gets a unit flexibility of its
   // own: the inverse exists, and the sweeps never move that component.

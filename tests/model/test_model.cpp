@@ -1,6 +1,7 @@
 // The FE body, the condensation and the contact solve against exact and direct solutions.
 #include "helpers.hpp"
 #include "rccm/contact/bipotential_solver.hpp"
+#include "rccm/contact/newton_solver.hpp"
 #include "rccm/fem/elasticity.hpp"
 #include "rccm/model/interface_state.hpp"
 #include "rccm/fem/loads.hpp"
@@ -244,6 +245,12 @@ solver = { tolerance = 1.0e-12; };
     CHECK(std::count(a.status.begin(), a.status.end(), Status::Slide) > 0);
     CHECK(a.status == b.status);
     CHECK(b.iterations <= a.iterations + 2);  // the compressed exact step, not sweeps alone
+    // The semi-smooth Newton solver on the compressed W0 (its 2D steps are the active-set system's).
+    NewtonSolver newton(compressed_cfg.solver);
+    const ContactSolution c = solve_contact(compressed_model, newton, t, damaged(front), s0, nullptr);
+    REQUIRE(c.converged);
+    CHECK((c.Rbar - a.Rbar).norm() <= 1e-9 * a.y.norm());
+    CHECK(c.status == a.status);
     previous_dense = &a, previous_compressed = &b;
   }
 }
