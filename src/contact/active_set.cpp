@@ -120,9 +120,7 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
   for (int i = 0; i < pb.size(); ++i)
     if (pattern[i] != factorized_[i] || rows_moved(pb, pattern[i], i)) changed.push_back(i);
   const Eigen::Index c = dim * static_cast<Eigen::Index>(changed.size()), m = pb.W0->size();
-  D_.resize(c, m);
-  if (c == 0) return true;
-  if (hodlr_) {  // compressed: the changed rows mixed again, the leaves and bisections that hold them refactorized
+  if (hodlr_ && c > 0) {  // compressed: the changed rows mixed again, the leaves and bisections that hold them refactorized (no pending D_)
     std::vector<Eigen::Index> granules, rows;
     for (int i : changed) {
       granules.push_back(Eigen::Index(dim) * i);
@@ -133,9 +131,10 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
     mixed_->remix_rows(*pb.W0->compressed(), Cw, Cy, granules);
     hodlr_->refactorize(*mixed_, rows);
     for (int i : changed) record(pb, pattern, i);
-    D_.resize(0, m);
     return true;
   }
+  D_.resize(c, m);
+  if (c == 0) return true;
   if (2 * c > m) return false;  // a new factorization costs less
   // A^-1 = A0^-1 - Z (I + D Z)^-1 D A0^-1 with Z = A0^-1 S, the changed rows' columns of A0^-1
   // (gathered from the inverse once there is one, c solves with the LU before).

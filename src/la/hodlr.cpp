@@ -399,11 +399,13 @@ struct HodlrSolver::Node {
 
 namespace {
 
-/// The solver's tree, the matrix's shape, nothing factorized yet.
+/// The solver's tree, the matrix's shape and right factors V (rows do not change them: a
+/// refactorization keeps them), nothing factorized yet.
 std::unique_ptr<HodlrSolver::Node> shape(const HodlrMatrix::Node& a) {
   auto node = std::make_unique<HodlrSolver::Node>();
   if (a.leaf()) return node;
   node->n1 = a.first->end - a.first->begin;
+  node->V12 = a.V12, node->V21 = a.V21;
   node->first = shape(*a.first);
   node->second = shape(*a.second);
   return node;
@@ -421,7 +423,6 @@ void factorize(HodlrSolver::Node& node, const HodlrMatrix::Node& a, const Touche
   factorize(*node.second, *a.second, touched);
   if (touched(a.first->begin, a.first->end)) node.X1 = node.first->solve(a.U12);
   if (touched(a.second->begin, a.second->end)) node.X2 = node.second->solve(a.U21);
-  node.V12 = a.V12, node.V21 = a.V21;
   const Eigen::Index r1 = a.U12.cols(), r2 = a.U21.cols();
   if (r1 + r2 == 0) return;
   Eigen::MatrixXd K = Eigen::MatrixXd::Identity(r1 + r2, r1 + r2);

@@ -119,9 +119,10 @@ Model::Model(const Config& cfg, Mesh mesh)
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);
   std::vector<int> interface_dofs;  // ordered last in the factor, for the dense W0
-  for (const ContactPair& c : interface_.pairs)
-    for (int node : {c.node, c.opposite})
-      for (int x = 0; !compress && node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
+  if (!compress)
+    for (const ContactPair& c : interface_.pairs)
+      for (int node : {c.node, c.opposite})
+        for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
   try {
     body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), supports_, interface_dofs);
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
