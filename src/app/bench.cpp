@@ -68,7 +68,7 @@ std::vector<BenchCase> paper_cases(const std::string& config_dir) {
           {"B2 euler-210 jacobi", load_config(b2, b2_jacobi), 136.5}};
 }
 
-std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, double T) {
+std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, double T, LinearSolver linear) {
   std::vector<BenchCase> cases;
   for (int k = 0; k < levels; ++k) {
     const int f = 1 << k;
@@ -78,6 +78,7 @@ std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, do
     cfg.integrator.max_step = cfg.integrator.max_step > 0 ? cfg.integrator.max_step : cfg.time.T / 50;
     cfg.time.T = T;
     cfg.output.times.clear();
+    cfg.solver.linear.kind = linear;
     cases.push_back({"B1 x" + std::to_string(f), cfg, 0.0});
   }
   return cases;

@@ -8,9 +8,11 @@
 #include "rccm/app/sweep.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/io/config_reader.hpp"
+#include "rccm/la/parallel.hpp"
 
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdio>
 #include <filesystem>
@@ -95,6 +97,9 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(0, 12));
   bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
       ->check(CLI::PositiveNumber);
+  std::string bench_linear = "auto";
+  bench->add_option("--linear", bench_linear, "the body's solver of the scale cases (solver.linear; default auto)")
+      ->check(CLI::IsMember({"auto", "cholmod", "mumps", "cg-gamg"}));
   bool verbose = false, force = false;
   run->add_flag("--quiet,-q", quiet, "no progress line");
   for (CLI::App* sub : {run, sweep_app})
@@ -119,27 +124,42 @@ int main(int argc, char** argv) {
 
   // A closed pipe (rccm run -v | head) fails the write, not the run: the files stay complete.
   std::signal(SIGPIPE, SIG_IGN);
+  // Under mpirun: every process runs the problem, the body's solves are shared, process 0 writes.
+  if (rccm::parallel::launched()) rccm::parallel::start();
+  const bool root = rccm::parallel::rank() == 0;
+  const int status = [&] {
   try {
+    if (rccm::parallel::size() > 1 && !*run && !*bench)
+      throw rccm::InputError("under mpirun only `rccm run` and `rccm bench` share their work among processes; run `rccm " +
+                             app.get_subcommands().front()->get_name() + "` as one process");
     if (*bench) {
+      std::ostream nowhere(nullptr);  // every process runs the cases, process 0 prints
+      std::ostream& out = root ? std::cout : nowhere;
       std::vector<rccm::BenchRow> rows;
-      rccm::print_bench_header(std::cout);
+      rccm::print_bench_header(out);
       for (const rccm::BenchCase& c : rccm::paper_cases(bench_dir)) {
         rows.push_back(rccm::run_bench_case(c));
-        rccm::print_bench_row(std::cout, rows.back());
+        rccm::print_bench_row(out, rows.back());
       }
       if (scale_levels > 0) {
         std::vector<rccm::BenchRow> scale;
-        std::cout << "\n# refined B1, t in [0, " << scale_time << "] s\n";
-        rccm::print_bench_header(std::cout);
-        for (const rccm::BenchCase& c : rccm::scale_cases(bench_dir, scale_levels, scale_time)) {
+        const std::vector<std::string> linear_names{"auto", "cholmod", "mumps", "cg-gamg"};  // LinearSolver's order
+        const auto linear = static_cast<rccm::LinearSolver>(
+            std::find(linear_names.begin(), linear_names.end(), bench_linear) - linear_names.begin());
+        if (linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
+          throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
+        out << "\n# refined B1, t in [0, " << scale_time << "] s\n";
+        rccm::print_bench_header(out);
+        for (const rccm::BenchCase& c : rccm::scale_cases(bench_dir, scale_levels, scale_time, linear)) {
           scale.push_back(rccm::run_bench_case(c));
-          rccm::print_bench_row(std::cout, scale.back());
+          rccm::print_bench_row(out, scale.back());
         }
-        rccm::print_growth(std::cout, scale);
+        out << "# body's solves: " << scale.back().result.linear_solver << "\n";
+        rccm::print_growth(out, scale);
         rows.insert(rows.end(), scale.begin(), scale.end());
       }
-      if (!bench_csv.empty()) rccm::write_bench_csv(bench_csv, rows);
-      if (!bench_json.empty()) rccm::write_bench_json(bench_json, rows);
+      if (root && !bench_csv.empty()) rccm::write_bench_csv(bench_csv, rows);
+      if (root && !bench_json.empty()) rccm::write_bench_json(bench_json, rows);
       return 0;
     }
     if (*sweep_app) {
@@ -156,13 +176,14 @@ int main(int argc, char** argv) {
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (*run) {
       rccm::RunOptions options;
-      options.step_log = verbose ? &std::cout : nullptr;
-      options.progress = !quiet && isatty(fileno(stderr));
-      options.write_files = true;
+      options.step_log = verbose && root ? &std::cout : nullptr;
+      options.progress = !quiet && root && isatty(fileno(stderr));
+      options.write_files = root;
       options.force = force;
       options.restart = !restart_dir.empty();
       rccm::install_stop_handlers();
       const rccm::RunResult r = rccm::Simulation(cfg, options).run();
+      if (!root) return 0;
       print_totals(r);
       std::printf("# results in %s (report.txt, interface_t*.csv, history.csv, curves.csv, results.pvd)\n",
                   cfg.output.directory.c_str());
@@ -172,16 +193,20 @@ int main(int argc, char** argv) {
     }
     return 0;
   } catch (const rccm::InputError& e) {
-    std::cerr << "rccm: error: " << e.what() << "\n";
+    if (root) std::cerr << "rccm: error: " << e.what() << "\n";  // the same in every process
     return 2;
   } catch (const rccm::SolveError& e) {
-    std::cerr << "rccm: run failed: " << e.what() << "\n";
+    if (root) std::cerr << "rccm: run failed: " << e.what() << "\n";
     return 3;
   } catch (const rccm::Interrupted& e) {
-    std::cerr << "rccm: " << e.what() << "; the results up to that step are complete in the output directory\n";
+    if (root) std::cerr << "rccm: " << e.what() << "; the results up to that step are complete in the output directory\n";
     return 128 + e.signal;
   } catch (const std::exception& e) {
     std::cerr << "rccm: internal error: " << e.what() << "\n";
     return 1;
   }
+  }();
+  // A process that stopped on an error stops the others, which could wait for it forever.
+  if (status != 0 && rccm::parallel::size() > 1) rccm::parallel::abort(status);
+  return status;
 }

@@ -10,7 +10,7 @@
 namespace rccm {
 
 ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
-                               const std::vector<int>& interface_dofs)
+                               const std::vector<int>& interface_dofs, const LinearSolverParams& linear)
     : prescribed_(std::move(prescribed)), free_index_(K.rows(), -1) {
   std::sort(prescribed_.begin(), prescribed_.end());
   std::vector<char> is_prescribed(K.rows(), 0);
@@ -45,28 +45,30 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
     if (free_index_[d] >= 0) last.push_back(free_index_[d]);
   std::sort(last.begin(), last.end());
   last.erase(std::unique(last.begin(), last.end()), last.end());
-  factor_ = std::make_unique<CholmodFactor>(K0_FF, last);
+  solver_ = make_spd_solver(K0_FF, linear, last);
+  if (!last.empty()) trailing_ = dynamic_cast<const CholmodFactor*>(solver_.get());
   // A floating body gives a zero pivot or, in floating point, a tiny one; so do stiffnesses
   // that differ by more than double precision can hold (Cn = 1e30 against E = 1e3).
-  if (!factor_->ok() || factor_->rcond() < 1e-14) {
+  if (!solver_->ok() || solver_->rcond() < 1e-14) {
     const Eigen::VectorXd d = Eigen::VectorXd(K0_FF.diagonal()).cwiseAbs();
     const double spread = d.maxCoeff() / std::max(d.minCoeff(), 1e-300);
     std::ostringstream m;
     m.precision(3);
     if (spread > 1e12)
-      m << "the structure's stiffness is ill-conditioned (CHOLMOD rcond " << (factor_->ok() ? factor_->rcond() : 0.0)
+      m << "the structure's stiffness is ill-conditioned (" << solver_->name() << ": rcond " << solver_->rcond()
         << "): its diagonal spans a factor " << spread << "; bring the stiffnesses closer (the interface's "
         << "a Cn and a Ct against the body's E, or the materials among themselves)";
     else
-      m << "the structure is not restrained: its stiffness with the interface springs is singular (CHOLMOD rcond "
-        << (factor_->ok() ? factor_->rcond() : 0.0)
+      m << "the structure is not restrained: its stiffness with the interface springs is singular (" << solver_->name()
+        << ": rcond " << solver_->rcond()
         << "); add a prescribed displacement on a node set or an interface that holds the body";
     throw InputError(m.str());
   }
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
-  const std::vector<int>& order = factor_->trailing_order();  // free indices of the interface DOFs
+  if (!trailing_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
+  const std::vector<int>& order = trailing_->trailing_order();  // free indices of the interface DOFs
   std::vector<int> position(free_.size(), -1);
   for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int>(k);
   Eigen::MatrixXd G = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(order.size()), P.rows());  // P_C^T
@@ -77,7 +79,7 @@ Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
       RCCM_VERIFY(position[f] >= 0, "flexibility(): P reads a DOF that was not ordered last");
       G(position[f], it.row()) = it.value();
     }
-  factor_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
+  trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(P.rows(), P.rows());
   W.selfadjointView<Eigen::Lower>().rankUpdate(G.transpose());
   return W.selfadjointView<Eigen::Lower>();
@@ -94,7 +96,7 @@ Eigen::MatrixXd ElasticProblem::flexibility_products(const SparseMatrix& P, cons
     for (int col = 0; col < P.outerSize(); ++col)
       for (SparseMatrix::InnerIterator it(P, col); it; ++it)
         if (free_index_[col] >= 0) f.row(free_index_[col]) += it.value() * Y.block(it.row(), first, 1, k);
-    const Eigen::MatrixXd u = factor_->solve(f);
+    const Eigen::MatrixXd u = solver_->solve(f);
     for (int col = 0; col < P.outerSize(); ++col)
       for (SparseMatrix::InnerIterator it(P, col); it; ++it)
         if (free_index_[col] >= 0) out.block(it.row(), first, 1, k) += it.value() * u.row(free_index_[col]);
@@ -118,7 +120,7 @@ Eigen::MatrixXd ElasticProblem::solve(const Eigen::MatrixXd& f, const Eigen::Mat
   Eigen::MatrixXd uD(prescribed_.size(), u_prescribed.cols());
   for (std::size_t k = 0; k < prescribed_.size(); ++k) uD.row(k) = u_prescribed.row(prescribed_[k]);
   const Eigen::MatrixXd rhs = restrict_free(f) - K0_FD_ * uD;
-  Eigen::MatrixXd u = extend_free(factor_->solve(rhs));
+  Eigen::MatrixXd u = extend_free(solver_->solve(rhs));
   for (std::size_t k = 0; k < prescribed_.size(); ++k) u.row(prescribed_[k]) = uD.row(k);
   return u;
 }

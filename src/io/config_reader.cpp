@@ -6,6 +6,7 @@
 #include "rccm/base/memory.hpp"
 #include "rccm/base/suggest.hpp"
 #include "rccm/io/csv.hpp"
+#include "rccm/la/parallel.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
 #include "rccm/time/arkode_integrator.hpp"
 
@@ -594,7 +595,7 @@ SolverParams read_solver(const Reader& r, const Setting& root) {
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
   r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation",
-              "active_set", "active_set_max_nodes", "compressed_min_nodes"});
+              "active_set", "active_set_max_nodes", "compressed_min_nodes", "linear", "linear_tolerance"});
   S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
   S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
   if (s->exists("over_relaxation"))
@@ -618,6 +619,14 @@ SolverParams read_solver(const Reader& r, const Setting& root) {
   S.compressed_min_nodes = r.integer(*s, "compressed_min_nodes", S.compressed_min_nodes);
   if (s->exists("compressed_min_nodes"))
     r.check(S.compressed_min_nodes >= 0, (*s)["compressed_min_nodes"], "must be >= 0", S.compressed_min_nodes);
+  S.linear.kind = static_cast<LinearSolver>(r.choice(*s, "linear", {"auto", "cholmod", "mumps", "cg-gamg"}, 0));
+  if (S.linear.kind == LinearSolver::Cholmod && parallel::size() > 1)
+    r.fail((*s)["linear"], "\"cholmod\" solves in one process; under mpirun (" + std::to_string(parallel::size()) +
+                              " processes) use \"mumps\" or \"cg-gamg\", or \"auto\"");
+  S.linear.tolerance = r.number(*s, "linear_tolerance", S.linear.tolerance);
+  if (s->exists("linear_tolerance"))
+    r.check(S.linear.tolerance > 0 && S.linear.tolerance < 1, (*s)["linear_tolerance"], "must be in (0, 1)",
+            S.linear.tolerance);
   return S;
 }
 

@@ -35,7 +35,8 @@ std::vector<const StepRecord*> paper_table_columns(const RunResult& r) {
 void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r) {
   out << "rccm run report: " << cfg.file << "\n"
       << "mesh: " << r.nodes << " nodes, " << r.cells << " cells, " << r.dofs << " DOFs, " << r.contact_nodes
-      << " contact nodes\n";
+      << " contact nodes\n"
+      << "body's solves: " << r.linear_solver << "\n";
   out << "bodies (" << hypothesis_name(cfg.hypothesis()) << "):";
   for (const std::string& b : r.bodies) out << " " << b;
   out << "\ninterfaces:";
@@ -136,6 +137,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"cells", r.cells},
                        {"dofs", r.dofs},
                        {"contact_nodes", r.contact_nodes},
+                       {"linear_solver", r.linear_solver},
                        {"bodies", r.bodies},
                        {"pairs_per_interface", r.pairs_per_interface},
                        {"steps", I.steps},

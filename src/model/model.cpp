@@ -124,7 +124,8 @@ Model::Model(const Config& cfg, Mesh mesh)
       for (int node : {c.node, c.opposite})
         for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
   try {
-    body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), supports_, interface_dofs);
+    body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), supports_, interface_dofs,
+                                             cfg.solver.linear);
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }
@@ -186,7 +187,7 @@ void Model::check_restrained(const Config& cfg) const {
   if (loose < 0) return;
   const Eigen::VectorXd tangential = beta0.cwiseProduct(beta0), normal = Eigen::VectorXd::Ones(beta0.size());
   try {
-    ElasticProblem(K_, interface_.springs(tangential, normal), supports_);
+    ElasticProblem(K_, interface_.springs(tangential, normal), supports_, {}, cfg.solver.linear);
   } catch (const InputError&) {
     throw InputError(cfg.where(cfg.interfaces[interface_.pairs[loose].law].path + ".mu") +
                      ": the body is not restrained: with mu = 0 and beta0 = 0 the interface is frictionless and "

@@ -82,9 +82,10 @@ def unit_of(column):
     return column[column.rfind("[") + 1:-1] if column.endswith("]") and "[" in column else ""
 
 
-def compare(name, kind, ref_text, new_text, largest):
+def compare(name, kind, ref_text, new_text, largest, fixed_tolerance=1e-10):
     """Returns a list of failures, each a line of text; largest[0] becomes the largest difference
-    seen relative to its tolerance (0: the compared numbers are identical)."""
+    seen relative to its tolerance (0: the compared numbers are identical). `fixed_tolerance`:
+    the `fixed` rule's fraction of each unit's scale."""
     ref_head, ref_rows = read_csv(ref_text)
     new_head, new_rows = read_csv(new_text)
     fails = []
@@ -95,7 +96,7 @@ def compare(name, kind, ref_text, new_text, largest):
         tol_of = lambda col, scale: 1e-6
     else:
         columns = [c for c in ref_head if not any(s in c for s in SKIP)]
-        tol_of = lambda col, scale: 1e-10 * scale
+        tol_of = lambda col, scale: fixed_tolerance * scale
         if len(ref_rows) != len(new_rows):
             return ["%s: %d lines, expected %d" % (name, len(new_rows), len(ref_rows))]
     if kind != "fixed" and len(ref_rows) != len(new_rows):

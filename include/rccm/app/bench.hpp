@@ -30,7 +30,8 @@ std::vector<BenchCase> paper_cases(const std::string& config_dir);
 
 /// B1 refined 2^k times in each direction, k = 0 .. levels-1, run over [0, T] only (the
 /// same loading rate), ARKODE default tolerances.
-std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, double T);
+/// `linear`: the body's solver of every case (solver.linear).
+std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, double T, LinearSolver linear);
 
 BenchRow run_bench_case(const BenchCase& c);
 

@@ -106,6 +106,15 @@ struct TimeParams {
 enum class ContactMethod { Bipotential, Rccm, Newton };
 enum class SweepForm { GaussSeidel, Jacobi };
 enum class RhoRule { Eigen, Paper };
+/// The sparse solver of the body's stiffness K0 (la/spd_solver.hpp): CHOLMOD (embedded, one
+/// process), PETSc with MUMPS (direct, distributed), PETSc CG with GAMG (iterative);
+/// auto: CHOLMOD in one process, MUMPS under mpirun with several.
+enum class LinearSolver { Auto, Cholmod, Mumps, CgGamg };
+
+struct LinearSolverParams {
+  LinearSolver kind = LinearSolver::Auto;
+  double tolerance = 1e-12;  // cg-gamg: relative residual of each solve
+};
 
 /// Numerics of the contact solve at fixed beta (docs/MODEL.md s5, docs/SOLVERS.md).
 struct SolverParams {
@@ -120,6 +129,7 @@ struct SolverParams {
   bool active_set = true;        // the exact step: solve the linear problem of a status pattern
   int active_set_max_nodes = 4096;  // beyond, on a dense W0: sweeps only (the exact step keeps two dense (2n)^2 matrices: 32 n^2 bytes)
   int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, 2D newton)
+  LinearSolverParams linear;        // the body's K0 solves (setup: W0, load responses; body state at output)
 };
 
 /// How beta evolves: integrated by ARKODE or explicit Euler, the rate-independent limit,

@@ -1,10 +1,12 @@
 // The linear elastic body with its Dirichlet DOFs eliminated and the initial interface
 // springs added (docs/MODEL.md s4: K0 = K + sum_i P_i^T a_i diag(Ct, Cn) P_i), factorized once,
-// with the interface DOFs ordered last so that the flexibility P K0^-1 P^T comes from the
-// factor's trailing block (CholmodFactor).
+// by CHOLMOD with the interface DOFs ordered last so that the flexibility P K0^-1 P^T comes
+// from the factor's trailing block (CholmodFactor), or by PETSc over the processes of the run
+// (la/spd_solver.hpp).
 #pragma once
 
 #include "rccm/la/cholmod_factor.hpp"
+#include "rccm/la/spd_solver.hpp"
 #include "rccm/la/sparse.hpp"
 
 #include <Eigen/Core>
@@ -18,10 +20,10 @@ class ElasticProblem {
  public:
   /// `springs`: full-size sparse matrix added to K before elimination (the interface
   /// springs at beta = 1); `prescribed`: the Dirichlet DOFs (Mesh::dof numbering);
-  /// `interface_dofs`: the DOFs `flexibility()` will be asked about, ordered last.
-  /// Throws InputError when the body is not restrained (K0 singular).
+  /// `interface_dofs`: the DOFs `flexibility()` will be asked about, ordered last (CHOLMOD);
+  /// `linear`: who solves K0. Throws InputError when the body is not restrained (K0 singular).
   ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
-                 const std::vector<int>& interface_dofs = {});
+                 const std::vector<int>& interface_dofs = {}, const LinearSolverParams& linear = {});
 
   /// Full displacement for nodal forces f and prescribed values (full-size vectors;
   /// only the prescribed entries of `u_prescribed` are read): solves K0_FF u_F = f_F - K0_FD u_D.
@@ -30,11 +32,14 @@ class ElasticProblem {
   /// P K0^-1 P^T (prescribed displacements zero) for a P that reads only interface DOFs:
   /// with S = L_CC L_CC^T the Schur complement of the interface DOFs, (K0^-1)_CC = S^-1 and
   /// P K0^-1 P^T = G^T G with G = L_CC^-1 P_C^T: one dense triangular solve (docs/MODEL.md s4).
+  /// Without a trailing block (PETSc): one solve per row of P.
   Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
 
   /// P K0^-1 P^T Y for a block of columns Y, by sparse solves: the flexibility's products
   /// without forming it (any ordering of the factor).
   Eigen::MatrixXd flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const;
+
+  std::string solver_name() const { return solver_->name(); }
 
  private:
   /// Restriction of full-size columns to the free DOFs, and its transpose.
@@ -44,7 +49,8 @@ class ElasticProblem {
   std::vector<int> free_, prescribed_;
   std::vector<int> free_index_;  // global DOF -> index among free DOFs, or -1
   SparseMatrix K0_FD_;
-  std::unique_ptr<CholmodFactor> factor_;
+  std::unique_ptr<SpdSolver> solver_;
+  const CholmodFactor* trailing_ = nullptr;  // solver_ when it ordered the interface DOFs last
 };
 
 }  // namespace rccm

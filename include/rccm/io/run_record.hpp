@@ -42,6 +42,7 @@ struct RunResult {
   std::vector<std::string> warnings;
   std::string stopped;              // why the run ended before T (failure, signal); empty: complete
   int nodes = 0, cells = 0, contact_nodes = 0, dofs = 0;
+  std::string linear_solver;             // who solved the body's K0: "CHOLMOD", "PETSc MUMPS on 2 processes"
   std::vector<std::string> bodies;       // the mesh's bodies
   std::vector<int> pairs_per_interface;  // contact pairs of each config interface
   double setup_seconds = 0, wall_seconds = 0;

@@ -4,6 +4,8 @@
 // so (A^-1)_CC = S^-1 costs one dense triangular inverse instead of one solve per index.
 #pragma once
 
+#include "rccm/la/spd_solver.hpp"
+
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
@@ -12,19 +14,20 @@
 
 namespace rccm {
 
-class CholmodFactor {
+class CholmodFactor : public SpdSolver {
  public:
   /// Factorizes A (symmetric; both triangles stored) with the indices `last` ordered after
   /// all the others. `ok()` is false when A is not numerically positive definite (a floating
   /// structure); `rcond()` estimates 1/cond.
   explicit CholmodFactor(const Eigen::SparseMatrix<double>& A, const std::vector<int>& last = {});
-  ~CholmodFactor();
+  ~CholmodFactor() override;
   CholmodFactor(const CholmodFactor&) = delete;
   CholmodFactor& operator=(const CholmodFactor&) = delete;
 
-  bool ok() const { return ok_; }
-  double rcond() const { return rcond_; }
-  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const;
+  bool ok() const override { return ok_; }
+  double rcond() const override { return rcond_; }
+  Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const override;
+  std::string name() const override { return "CHOLMOD"; }
 
   /// The lower-triangular trailing block L_CC (dense), its rows and columns being the
   /// indices of `trailing_order()`: the `last` indices in the factor's order.

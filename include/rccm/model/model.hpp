@@ -34,6 +34,8 @@ class Model {
   const Interface& interface() const { return interface_; }
   const Condensation& condensation() const { return *condensation_; }
   int contact_nodes() const { return interface_.size(); }
+  /// Who solves the body's K0 (solver.linear): "CHOLMOD", "PETSc MUMPS on 2 processes", ...
+  std::string linear_solver() const { return body_->solver_name(); }
   /// The largest extent of the mesh, mm: no small-strain displacement comes near it.
   double size() const { return size_; }
 

@@ -1,0 +1,24 @@
+// The processes of a run. One, unless rccm was launched by mpirun with several: then MPI and
+// PETSc start with the run, every process runs the same program on the same data (the contact
+// problem and beta replicated), the body's solves are distributed (la/petsc_solver.hpp), and
+// only process 0 writes. In one process PETSc starts only when a PETSc solver is asked for.
+#pragma once
+
+namespace rccm::parallel {
+
+/// True when this process belongs to an mpirun launch of more than one process.
+bool launched();
+
+/// Starts MPI and PETSc once (later calls do nothing); they finish when the program exits.
+/// PETSc's signal handlers stay off: SIGINT/SIGTERM remain rccm's (app/stop_request.hpp).
+void start();
+
+/// This process's rank and the number of processes (0 and 1 before start()).
+int rank();
+int size();
+
+/// Ends the program with `status`: with several processes, all of them (MPI_Abort), so that
+/// none waits forever for a process that stopped on an error.
+[[noreturn]] void abort(int status);
+
+}  // namespace rccm::parallel

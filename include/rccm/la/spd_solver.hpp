@@ -1,0 +1,36 @@
+// A factorized (or preconditioned) sparse symmetric positive definite matrix that solves
+// blocks of right-hand sides: CHOLMOD (the embedded default, one process), or PETSc with MUMPS
+// (direct) or CG + GAMG (iterative), distributed over the processes of an mpirun run
+// (la/parallel.hpp) with the whole solution returned to every process.
+#pragma once
+
+#include "rccm/base/config.hpp"
+#include "rccm/la/sparse.hpp"
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace rccm {
+
+class SpdSolver {
+ public:
+  virtual ~SpdSolver() = default;
+  /// False when A is not numerically positive definite (a floating structure).
+  virtual bool ok() const = 0;
+  /// An estimate of 1 / cond(A): CHOLMOD's, or for PETSc the spread of A's diagonal; 0 if not ok.
+  virtual double rcond() const = 0;
+  /// A^-1 b for every column of b, whole vectors on every process (collective under mpirun).
+  virtual Eigen::MatrixXd solve(const Eigen::MatrixXd& b) const = 0;
+  /// Who solves, for messages and reports: "CHOLMOD", "PETSc MUMPS on 2 processes", ...
+  virtual std::string name() const = 0;
+};
+
+/// The solver of `params.kind` for A (symmetric, both triangles stored); Auto: CHOLMOD in one
+/// process, MUMPS in several. `last`: indices ordered last (CHOLMOD only: CholmodFactor).
+std::unique_ptr<SpdSolver> make_spd_solver(const SparseMatrix& A, const LinearSolverParams& params,
+                                           const std::vector<int>& last = {});
+
+}  // namespace rccm

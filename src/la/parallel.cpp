@@ -1,0 +1,50 @@
+#include "rccm/la/parallel.hpp"
+
+#include "rccm/base/errors.hpp"
+
+#include <petscsys.h>
+
+#include <cstdlib>
+
+namespace rccm::parallel {
+
+namespace {
+
+bool started = false;
+int my_rank = 0, my_size = 1;
+
+void finish() { PetscFinalize(); }
+
+int environment_size(const char* name) {
+  const char* v = std::getenv(name);
+  return v ? std::atoi(v) : 1;
+}
+
+}  // namespace
+
+bool launched() {
+  // Open MPI's mpirun, and the PMI launchers of MPICH and Slurm.
+  return environment_size("OMPI_COMM_WORLD_SIZE") > 1 || environment_size("PMI_SIZE") > 1;
+}
+
+void start() {
+  if (started) return;
+  RCCM_VERIFY(PetscOptionsSetValue(nullptr, "-no_signal_handler", nullptr) == 0, "PetscOptionsSetValue");
+  RCCM_VERIFY(PetscInitializeNoArguments() == 0, "PetscInitialize");
+  // Errors come back as codes, checked where they happen, without PETSc's own traces.
+  PetscPushErrorHandler(PetscReturnErrorHandler, nullptr);
+  MPI_Comm_rank(PETSC_COMM_WORLD, &my_rank);
+  MPI_Comm_size(PETSC_COMM_WORLD, &my_size);
+  started = true;
+  std::atexit(finish);
+}
+
+int rank() { return my_rank; }
+int size() { return my_size; }
+
+void abort(int status) {
+  if (my_size > 1) MPI_Abort(PETSC_COMM_WORLD, status);
+  std::exit(status);
+}
+
+}  // namespace rccm::parallel

@@ -1,0 +1,182 @@
+#include "rccm/la/petsc_solver.hpp"
+
+#include "rccm/base/errors.hpp"
+#include "rccm/la/parallel.hpp"
+
+#include <petscksp.h>
+
+#include <cmath>
+#include <sstream>
+
+namespace rccm {
+
+namespace {
+
+void check(PetscErrorCode e, const char* call) {
+  if (e != 0) throw InternalError(std::string("PETSc: ") + call + " failed with error " + std::to_string(e));
+}
+
+}  // namespace
+
+struct PetscSolver::Impl {
+  Mat A = nullptr;
+  KSP ksp = nullptr;
+  Vec b = nullptr, x = nullptr, x_all = nullptr;  // x_all: the whole solution on every process
+  VecScatter to_all = nullptr;
+  PetscInt lo = 0, hi = 0;  // this process's rows
+
+  ~Impl() {
+    VecScatterDestroy(&to_all);
+    VecDestroy(&x_all);
+    VecDestroy(&x);
+    VecDestroy(&b);
+    KSPDestroy(&ksp);
+    MatDestroy(&A);
+  }
+
+  /// KSP's solution of b's rows [lo, hi) of column `rhs`, whole, into `out`; the KSP's reason.
+  KSPConvergedReason solve_column(const double* rhs, double* out) const {
+    PetscScalar* local = nullptr;
+    check(VecGetArray(b, &local), "VecGetArray");
+    std::copy(rhs + lo, rhs + hi, local);
+    check(VecRestoreArray(b, &local), "VecRestoreArray");
+    check(KSPSolve(ksp, b, x), "KSPSolve");
+    KSPConvergedReason reason;
+    check(KSPGetConvergedReason(ksp, &reason), "KSPGetConvergedReason");
+    gather(x, out);
+    return reason;
+  }
+
+  /// KSPMatSolve on the columns of b at once (for MUMPS: one solve phase), whole into x.
+  void solve_block(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& out) const {
+    const PetscInt n = static_cast<PetscInt>(rhs.rows()), k = static_cast<PetscInt>(rhs.cols());
+    Mat B = nullptr, X = nullptr;
+    check(MatCreateDense(PETSC_COMM_WORLD, hi - lo, PETSC_DECIDE, n, k, nullptr, &B), "MatCreateDense");
+    check(MatCreateDense(PETSC_COMM_WORLD, hi - lo, PETSC_DECIDE, n, k, nullptr, &X), "MatCreateDense");
+    PetscScalar* local = nullptr;
+    PetscInt lda = 0;
+    check(MatDenseGetLDA(B, &lda), "MatDenseGetLDA");
+    check(MatDenseGetArrayWrite(B, &local), "MatDenseGetArrayWrite");
+    for (PetscInt c = 0; c < k; ++c) std::copy(rhs.col(c).data() + lo, rhs.col(c).data() + hi, local + c * lda);
+    check(MatDenseRestoreArrayWrite(B, &local), "MatDenseRestoreArrayWrite");
+    check(KSPMatSolve(ksp, B, X), "KSPMatSolve");
+    for (PetscInt c = 0; c < k; ++c) {
+      Vec column = nullptr;
+      check(MatDenseGetColumnVecRead(X, c, &column), "MatDenseGetColumnVecRead");
+      gather(column, out.col(c).data());
+      check(MatDenseRestoreColumnVecRead(X, c, &column), "MatDenseRestoreColumnVecRead");
+    }
+    MatDestroy(&X);
+    MatDestroy(&B);
+  }
+
+  /// The whole of a distributed vector v, on every process, into out.
+  void gather(Vec v, double* out) const {
+    check(VecScatterBegin(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
+    check(VecScatterEnd(to_all, v, x_all, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
+    const PetscScalar* whole = nullptr;
+    PetscInt n = 0;
+    check(VecGetSize(x_all, &n), "VecGetSize");
+    check(VecGetArrayRead(x_all, &whole), "VecGetArrayRead");
+    std::copy(whole, whole + n, out);
+    check(VecRestoreArrayRead(x_all, &whole), "VecRestoreArrayRead");
+  }
+};
+
+PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolerance)
+    : impl_(std::make_unique<Impl>()), kind_(kind) {
+  RCCM_VERIFY(kind == LinearSolver::Mumps || kind == LinearSolver::CgGamg, "PetscSolver: MUMPS or CG + GAMG");
+  parallel::start();
+  Impl& p = *impl_;
+  PetscInt n = static_cast<PetscInt>(A.rows()), local = PETSC_DECIDE;
+  check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &n), "PetscSplitOwnership");
+  check(MPI_Scan(&local, &p.hi, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD), "MPI_Scan");
+  p.lo = p.hi - local;
+
+  // This process's rows: by symmetry, A's columns lo..hi-1 (column-major storage).
+  std::vector<PetscInt> diagonal_block(local, 0), off_block(local, 0);
+  for (PetscInt r = p.lo; r < p.hi; ++r)
+    for (SparseMatrix::InnerIterator it(A, r); it; ++it)
+      ++(it.row() >= p.lo && it.row() < p.hi ? diagonal_block : off_block)[r - p.lo];
+  check(MatCreate(PETSC_COMM_WORLD, &p.A), "MatCreate");
+  check(MatSetSizes(p.A, local, local, n, n), "MatSetSizes");
+  check(MatSetType(p.A, MATAIJ), "MatSetType");
+  check(MatXAIJSetPreallocation(p.A, 1, diagonal_block.data(), off_block.data(), nullptr, nullptr),
+        "MatXAIJSetPreallocation");
+  std::vector<PetscInt> cols;
+  std::vector<PetscScalar> values;
+  for (PetscInt r = p.lo; r < p.hi; ++r) {
+    cols.clear();
+    values.clear();
+    for (SparseMatrix::InnerIterator it(A, r); it; ++it) {
+      cols.push_back(static_cast<PetscInt>(it.row()));
+      values.push_back(it.value());
+    }
+    check(MatSetValues(p.A, 1, &r, static_cast<PetscInt>(cols.size()), cols.data(), values.data(), INSERT_VALUES),
+          "MatSetValues");
+  }
+  check(MatAssemblyBegin(p.A, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(p.A, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  check(MatSetOption(p.A, MAT_SYMMETRIC, PETSC_TRUE), "MatSetOption");
+
+  check(KSPCreate(PETSC_COMM_WORLD, &p.ksp), "KSPCreate");
+  check(KSPSetOperators(p.ksp, p.A, p.A), "KSPSetOperators");
+  PC pc;
+  check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
+  if (kind == LinearSolver::Mumps) {
+    check(KSPSetType(p.ksp, KSPPREONLY), "KSPSetType");
+    check(PCSetType(pc, PCCHOLESKY), "PCSetType");
+    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+  } else {
+    check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
+    check(PCSetType(pc, PCGAMG), "PCSetType");
+    check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");  // the residual itself
+    check(KSPSetTolerances(p.ksp, tolerance, 1e-300, PETSC_DEFAULT, 100000), "KSPSetTolerances");
+  }
+  check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");  // PETSC_OPTIONS
+  check(KSPSetUp(p.ksp), "KSPSetUp");                     // MUMPS factorizes here
+  check(MatCreateVecs(p.A, &p.x, &p.b), "MatCreateVecs");
+  check(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all), "VecScatterCreateToAll");
+
+  // Positive definite? A failed factorization (a zero pivot) or a floating structure shows in
+  // the residual of a solve whose right-hand side has a part in every direction.
+  Eigen::VectorXd rhs(n), x(n);
+  for (PetscInt i = 0; i < n; ++i) rhs[i] = 1.0 + 0.5 * std::sin(1.3 * static_cast<double>(i));
+  const KSPConvergedReason reason = p.solve_column(rhs.data(), x.data());
+  const double residual = (A * x - rhs).norm() / rhs.norm();
+  ok_ = reason >= 0 && residual <= std::max(1e-8, 10 * tolerance);  // false for NaN too
+  if (!ok_) return;
+  const Eigen::VectorXd d = Eigen::VectorXd(A.diagonal()).cwiseAbs();
+  rcond_ = d.minCoeff() / d.maxCoeff();
+}
+
+PetscSolver::~PetscSolver() = default;
+
+Eigen::MatrixXd PetscSolver::solve(const Eigen::MatrixXd& b) const {
+  Eigen::MatrixXd x(b.rows(), b.cols());
+  if (kind_ == LinearSolver::Mumps && b.cols() > 1) {  // MUMPS's solve phase on all columns at once
+    impl_->solve_block(b, x);
+    return x;
+  }
+  for (Eigen::Index c = 0; c < b.cols(); ++c) {
+    const KSPConvergedReason reason = impl_->solve_column(b.col(c).data(), x.col(c).data());
+    PetscInt its = 0;
+    check(KSPGetIterationNumber(impl_->ksp, &its), "KSPGetIterationNumber");
+    iterations_ += its;
+    if (reason < 0) {
+      std::ostringstream m;
+      m << "the body's solve by " << name() << " stopped without converging (PETSc reason " << reason << " after "
+        << its << " iterations); loosen solver.linear_tolerance or use solver.linear = \"mumps\"";
+      throw SolveError(m.str());
+    }
+  }
+  return x;
+}
+
+std::string PetscSolver::name() const {
+  const int procs = parallel::size();
+  return std::string(kind_ == LinearSolver::Mumps ? "PETSc MUMPS" : "PETSc CG + GAMG") + " on " +
+         std::to_string(procs) + (procs == 1 ? " process" : " processes");
+}
+
+}  // namespace rccm

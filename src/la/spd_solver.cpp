@@ -1,0 +1,17 @@
+#include "rccm/la/spd_solver.hpp"
+
+#include "rccm/la/cholmod_factor.hpp"
+#include "rccm/la/parallel.hpp"
+#include "rccm/la/petsc_solver.hpp"
+
+namespace rccm {
+
+std::unique_ptr<SpdSolver> make_spd_solver(const SparseMatrix& A, const LinearSolverParams& params,
+                                           const std::vector<int>& last) {
+  LinearSolver kind = params.kind;
+  if (kind == LinearSolver::Auto) kind = parallel::size() > 1 ? LinearSolver::Mumps : LinearSolver::Cholmod;
+  if (kind == LinearSolver::Cholmod) return std::make_unique<CholmodFactor>(A, last);
+  return std::make_unique<PetscSolver>(A, kind, params.tolerance);
+}
+
+}  // namespace rccm

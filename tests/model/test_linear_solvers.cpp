@@ -1,0 +1,78 @@
+// The body's solves by PETSc (MUMPS, CG + GAMG) against CHOLMOD: the same displacements, the
+// same W0 and free responses; a floating body refused by each. One process here; the same
+// under mpirun -np 2 is tests/check_mpi.py.
+#include "helpers.hpp"
+#include "rccm/fem/elastic_problem.hpp"
+#include "rccm/la/petsc_solver.hpp"
+#include "rccm/model/model.hpp"
+
+#include <catch2/catch.hpp>
+
+using namespace rccm;
+
+namespace {
+
+// B1's layer on 64 x 4 cells, pressed and pulled (65 contact pairs).
+const char* const kLayer = R"(
+mesh = { size = [50.0, 2.5]; nx = 64; ny = 4; element = "T3"; };
+material = { E = 6.9e4; nu = 0.333; hypothesis = "plane_strain"; };
+interface = { boundary = "bottom"; normal = [0.0, 1.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
+loads = ( { node_set = "top_left"; type = "displacement"; component = "y"; value = 0.3; },
+          { node_set = "top"; type = "traction"; component = "y"; value = -2.0; } );
+time = { T = 10.0; steps = 210; };
+)";
+
+LinearSolverParams solver(LinearSolver kind, double tolerance = 1e-12) { return {kind, tolerance}; }
+
+double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / b.norm(); }
+
+}  // namespace
+
+TEST_CASE("PETSc's MUMPS and CG + GAMG solve the body as CHOLMOD does", "[petsc]") {
+  const Model model = test::make_model(test::config_from_text(kLayer));
+  const SparseMatrix springs = model.interface().initial_springs();
+  const ElasticProblem cholmod(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::Cholmod));
+  const ElasticProblem mumps(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::Mumps));
+  const ElasticProblem cg(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::CgGamg, 1e-10));
+  const Eigen::Index n = model.stiffness().rows();
+  Eigen::MatrixXd f = Eigen::MatrixXd::Random(n, 3), u_prescribed = Eigen::MatrixXd::Zero(n, 3);
+  for (int d : model.supports()) u_prescribed.row(d).setConstant(0.01);  // also the K0_FD u_D term
+  const Eigen::MatrixXd u = cholmod.solve(f, u_prescribed);
+  CHECK(relative(mumps.solve(f, u_prescribed), u) <= 1e-11);
+  // CG stops at 1e-10 of the residual; the error is at most cond(K0) times that.
+  const Eigen::MatrixXd u_cg = cg.solve(f, u_prescribed);
+  CHECK(relative(u_cg, u) <= 1e-5);
+  CHECK(relative(u_cg, u) >= 1e-16);  // iterative: not the direct solution to the last bit
+  // K u = f on the free DOFs (the prescribed rows carry the supports' reactions).
+  const SparseMatrix K0 = model.stiffness() + springs;
+  Eigen::MatrixXd r = K0 * u_cg - f;
+  for (int d : model.supports()) r.row(d).setZero();
+  CHECK(r.norm() <= 1e-8 * f.norm());
+}
+
+TEST_CASE("W0 and the free responses from MUMPS's solves equal those from CHOLMOD's factor", "[petsc]") {
+  const Model cholmod = test::make_model(test::config_from_text(kLayer, {"solver.linear=\"cholmod\""}));
+  const Model mumps = test::make_model(test::config_from_text(kLayer, {"solver.linear=\"mumps\""}));
+  const Model mumps_compressed = test::make_model(
+      test::config_from_text(kLayer, {"solver.linear=\"mumps\"", "solver.compressed_min_nodes=0"}));
+  // Dense: CHOLMOD's from the trailing block of its factor, MUMPS's one solve per column.
+  const Eigen::MatrixXd& W0 = *cholmod.condensation().W0().dense();
+  REQUIRE(mumps.condensation().W0().dense() != nullptr);
+  CHECK(relative(*mumps.condensation().W0().dense(), W0) <= 1e-12);
+  // Compressed from blocks of MUMPS's solves (peeling): products to the compression's accuracy.
+  const DelassusOperator& W0c = mumps_compressed.condensation().W0();
+  REQUIRE(W0c.compressed() != nullptr);
+  const Eigen::VectorXd y = Eigen::VectorXd::Random(W0.rows());
+  Eigen::VectorXd u(W0.rows());
+  W0c.multiply(y, u);
+  CHECK(relative(u, W0 * y) <= 1e-9);
+  for (double t : {2.0, 10.0}) CHECK(relative(mumps.condensation().q0(t), cholmod.condensation().q0(t)) <= 1e-12);
+}
+
+TEST_CASE("a floating body is refused whichever solver factorizes it", "[petsc]") {
+  const Model model = test::make_model(test::config_from_text(kLayer));
+  const SparseMatrix no_springs(model.stiffness().rows(), model.stiffness().cols());
+  for (LinearSolver kind : {LinearSolver::Cholmod, LinearSolver::Mumps, LinearSolver::CgGamg})
+    CHECK_THROWS_WITH(ElasticProblem(model.stiffness(), no_springs, {}, {}, solver(kind)),
+                      Catch::Contains("not restrained"));
+}
