@@ -86,9 +86,12 @@ Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const {
-  // By blocks of a few columns, the forces P^T Y gathered onto the free DOFs directly (the
-  // prescribed ones: zero displacement, their forces unread): a few free-size columns at a time.
-  constexpr Eigen::Index block = 8;
+  // By blocks of columns, the forces P^T Y gathered onto the free DOFs directly (the prescribed
+  // ones: zero displacement, their forces unread). The blocks are as wide as 128 MB of forces
+  // and displacements allow, 8 to 64 columns: wider blocks make the factor's solves matrix-matrix
+  // products (B1 x32: setup 8.1 s with 8 columns, 5.3 s with 31).
+  const Eigen::Index block =
+      std::clamp<Eigen::Index>((Eigen::Index{1} << 27) / (16 * static_cast<Eigen::Index>(free_.size() + 1)), 8, 64);
   Eigen::MatrixXd out = Eigen::MatrixXd::Zero(P.rows(), Y.cols());
   for (Eigen::Index first = 0; first < Y.cols(); first += block) {
     const Eigen::Index k = std::min(block, Y.cols() - first);

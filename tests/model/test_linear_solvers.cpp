@@ -30,6 +30,7 @@ double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a 
 
 TEST_CASE("PETSc's MUMPS and CG + GAMG solve the body as CHOLMOD does", "[petsc]") {
   const Model model = test::make_model(test::config_from_text(kLayer));
+  CHECK(model.linear_solver() == "CHOLMOD");  // auto in one process: the embedded default
   const SparseMatrix springs = model.interface().initial_springs();
   const ElasticProblem cholmod(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::Cholmod));
   const ElasticProblem mumps(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::Mumps));
@@ -57,6 +58,7 @@ TEST_CASE("W0 and the free responses from MUMPS's solves equal those from CHOLMO
       test::config_from_text(kLayer, {"solver.linear=\"mumps\"", "solver.compressed_min_nodes=0"}));
   // Dense: CHOLMOD's from the trailing block of its factor, MUMPS's one solve per column.
   const Eigen::MatrixXd& W0 = *cholmod.condensation().W0().dense();
+  REQUIRE(mumps.linear_solver() == "PETSc MUMPS on 1 process");
   REQUIRE(mumps.condensation().W0().dense() != nullptr);
   CHECK(relative(*mumps.condensation().W0().dense(), W0) <= 1e-12);
   // Compressed from blocks of MUMPS's solves (peeling): products to the compression's accuracy.
