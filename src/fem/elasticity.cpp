@@ -48,6 +48,37 @@ double strain_matrix(const Mesh& mesh, const std::vector<int>& cell, double xi, 
   return 2 * M_PI * r * det;
 }
 
+/// H8: strain-displacement matrix B (6 x 24: xx, yy, zz, yz, xz, xy) at r = (xi, eta, zeta)
+/// of the reference cube [-1, 1]^3, and det J.
+double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vector3d& r, Eigen::MatrixXd& B) {
+  static const double corner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                      {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+  Eigen::Matrix<double, 3, 8> dN;
+  Eigen::Matrix<double, 8, 3> X;
+  for (int a = 0; a < 8; ++a) {
+    const double* c = corner[a];
+    const Eigen::Vector3d f(1 + c[0] * r[0], 1 + c[1] * r[1], 1 + c[2] * r[2]);  // N_a = f0 f1 f2 / 8
+    dN(0, a) = 0.125 * c[0] * f[1] * f[2];
+    dN(1, a) = 0.125 * c[1] * f[0] * f[2];
+    dN(2, a) = 0.125 * c[2] * f[0] * f[1];
+    X.row(a) = mesh.nodes[cell[a]].transpose();
+  }
+  const Eigen::Matrix3d J = dN * X;
+  const double det = J.determinant();
+  RCCM_VERIFY(det > 0, "H8 cell with non-positive Jacobian (inverted or degenerate)");
+  const Eigen::Matrix<double, 3, 8> d = J.inverse() * dN;  // d/dx, d/dy, d/dz
+  B.setZero(6, 24);
+  for (int a = 0; a < 8; ++a) {
+    B(0, 3 * a) = d(0, a);
+    B(1, 3 * a + 1) = d(1, a);
+    B(2, 3 * a + 2) = d(2, a);
+    B(3, 3 * a + 1) = d(2, a), B(3, 3 * a + 2) = d(1, a);  // gamma_yz
+    B(4, 3 * a) = d(2, a), B(4, 3 * a + 2) = d(0, a);      // gamma_xz
+    B(5, 3 * a) = d(1, a), B(5, 3 * a + 1) = d(0, a);      // gamma_xy
+  }
+  return det;
+}
+
 /// Quadrature points (xi, eta, weight) of a cell: T3 1 point (3 axisymmetric: the hoop
 /// term varies), Q4 2 x 2 Gauss.
 std::vector<Eigen::Vector3d> quadrature(int k, bool axisymmetric) {
@@ -58,15 +89,39 @@ std::vector<Eigen::Vector3d> quadrature(int k, bool axisymmetric) {
 }
 
 Eigen::VectorXd cell_displacement(const Mesh& mesh, const std::vector<int>& cell, const Eigen::VectorXd& u) {
-  Eigen::VectorXd ue(2 * cell.size());
-  for (std::size_t a = 0; a < cell.size(); ++a) ue.segment<2>(2 * a) = u.segment<2>(mesh.dof(cell[a], 0));
+  const int d = mesh.dim;
+  Eigen::VectorXd ue(d * cell.size());
+  for (std::size_t a = 0; a < cell.size(); ++a) ue.segment(d * a, d) = u.segment(mesh.dof(cell[a], 0), d);
   return ue;
+}
+
+/// K of a 3D mesh of H8 cells: 2 x 2 x 2 Gauss points.
+SparseMatrix assemble_stiffness_3d(const Mesh& mesh, const std::vector<Material>& body_materials) {
+  const double g = 1.0 / std::sqrt(3.0);
+  std::vector<Eigen::Triplet<double>> trip;
+  Eigen::MatrixXd B;
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+    const auto& cell = mesh.cells[c];
+    RCCM_VERIFY(cell.size() == 8, "3D cells are H8");
+    const Eigen::Matrix<double, 6, 6>& D = body_materials[mesh.cell_body[c]].D3();
+    Eigen::MatrixXd Ke = Eigen::MatrixXd::Zero(24, 24);
+    for (int q = 0; q < 8; ++q) {
+      const Eigen::Vector3d r(q & 1 ? g : -g, q & 2 ? g : -g, q & 4 ? g : -g);
+      const double dV = strain_matrix_3d(mesh, cell, r, B);
+      Ke += B.transpose() * D * B * dV;  // K_e = int B^T D B dV
+    }
+    for (int a = 0; a < 24; ++a)
+      for (int b = 0; b < 24; ++b) trip.emplace_back(mesh.dof(cell[a / 3], a % 3), mesh.dof(cell[b / 3], b % 3), Ke(a, b));
+  }
+  SparseMatrix K(mesh.num_dofs(), mesh.num_dofs());
+  K.setFromTriplets(trip.begin(), trip.end());
+  return K;
 }
 
 }  // namespace
 
 SparseMatrix assemble_stiffness(const Mesh& mesh, const std::vector<Material>& body_materials) {
-  RCCM_VERIFY(mesh.dim == 2, "plane elasticity on a 2D mesh");
+  if (mesh.dim == 3) return assemble_stiffness_3d(mesh, body_materials);
   std::vector<Eigen::Triplet<double>> trip;
   Eigen::MatrixXd B;
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
@@ -89,9 +144,17 @@ SparseMatrix assemble_stiffness(const Mesh& mesh, const std::vector<Material>& b
 }
 
 CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_materials, const Eigen::VectorXd& u) {
-  CellFields f{Eigen::Matrix4Xd(4, mesh.cells.size()), Eigen::Matrix4Xd(4, mesh.cells.size())};
+  const Eigen::Index rows = mesh.dim == 3 ? 6 : 4, cells = static_cast<Eigen::Index>(mesh.cells.size());
+  CellFields f{Eigen::MatrixXd(rows, cells), Eigen::MatrixXd(rows, cells)};
   Eigen::MatrixXd B;
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+    if (mesh.dim == 3) {  // at the cell centre
+      strain_matrix_3d(mesh, mesh.cells[c], Eigen::Vector3d::Zero(), B);
+      const Voigt3 eps = B * cell_displacement(mesh, mesh.cells[c], u);
+      f.strain.col(c) = eps;
+      f.stress.col(c) = body_materials[mesh.cell_body[c]].D3() * eps;
+      continue;
+    }
     const auto& cell = mesh.cells[c];
     const double centre = cell.size() == 3 ? 1.0 / 3 : 0.0;
     strain_matrix(mesh, cell, centre, centre, B);

@@ -70,6 +70,12 @@ Eigen::Matrix<double, 6, 6> compliance_in_material_axes(const MaterialParams& p)
 }
 
 Material::Material(const MaterialParams& p) : hypothesis_(p.hypothesis) {
+  if (!p.orthotropic) {  // Lame: sigma = lambda tr(eps) I + 2 G eps (G on the engineering shears)
+    const double G = p.E / (2 * (1 + p.nu)), lambda = p.E * p.nu / ((1 + p.nu) * (1 - 2 * p.nu));
+    D3_.topLeftCorner<3, 3>().setConstant(lambda);
+    D3_.topLeftCorner<3, 3>().diagonal().array() += 2 * G;
+    D3_.bottomRightCorner<3, 3>().diagonal().setConstant(G);
+  }
   // Isotropic in closed form: B2's explicit runs amplify a last-bit change of K to 1e-7.
   const Eigen::Matrix4d C4 = p.orthotropic ? rotated_stiffness(p) : isotropic_stiffness(p.E, p.nu);
   S_ = C4.inverse();

@@ -3,6 +3,8 @@
 #include "rccm/base/errors.hpp"
 #include "rccm/base/suggest.hpp"
 
+#include <Eigen/Geometry>
+
 #include <algorithm>
 #include <cmath>
 #include <map>
@@ -67,12 +69,46 @@ std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<int>& set) cons
   return out;
 }
 
+std::vector<BoundaryFace> Mesh::boundary_faces(const std::vector<int>& set) const {
+  RCCM_VERIFY(dim == 3, "boundary faces (3D)");
+  // int N_a dA on the bilinear quad x(xi, eta), by 2 x 2 Gauss points: dA = |x_xi x x_eta|.
+  const double g = 1.0 / std::sqrt(3.0);
+  const double xi[4] = {-1, 1, 1, -1}, eta[4] = {-1, -1, 1, 1};
+  std::vector<BoundaryFace> out;
+  for (const auto& f : facets_within(set)) {
+    RCCM_VERIFY(f.size() == 4, "a 3D boundary facet is a quad");
+    BoundaryFace face;
+    face.nodes = f;
+    face.weights.assign(4, 0.0);
+    Eigen::Vector3d normal = Eigen::Vector3d::Zero();
+    for (int q = 0; q < 4; ++q) {
+      const double s = g * xi[q], t = g * eta[q];
+      Eigen::Vector3d dxi = Eigen::Vector3d::Zero(), deta = Eigen::Vector3d::Zero();
+      for (int a = 0; a < 4; ++a) {
+        dxi += 0.25 * xi[a] * (1 + eta[a] * t) * nodes[f[a]];
+        deta += 0.25 * eta[a] * (1 + xi[a] * s) * nodes[f[a]];
+      }
+      const Eigen::Vector3d n = dxi.cross(deta);
+      for (int a = 0; a < 4; ++a) face.weights[a] += 0.25 * (1 + xi[a] * s) * (1 + eta[a] * t) * n.norm();
+      face.area += n.norm();
+      normal += n;
+    }
+    face.outward = normal.normalized();
+    out.push_back(face);
+  }
+  return out;
+}
+
 std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) const {
   std::vector<Eigen::Vector3d> sum(nodes.size(), Eigen::Vector3d::Zero());
-  for (const BoundaryEdge& e : boundary_edges(set)) {
-    sum[e.a] += e.length * e.outward;
-    sum[e.b] += e.length * e.outward;
-  }
+  if (dim == 3)
+    for (const BoundaryFace& f : boundary_faces(set))
+      for (int n : f.nodes) sum[n] += f.area * f.outward;
+  else
+    for (const BoundaryEdge& e : boundary_edges(set)) {
+      sum[e.a] += e.length * e.outward;
+      sum[e.b] += e.length * e.outward;
+    }
   std::vector<Eigen::Vector3d> out;
   for (int n : set) out.push_back(sum[n].norm() > 0 ? Eigen::Vector3d(sum[n].normalized()) : Eigen::Vector3d::Zero());
   return out;
@@ -80,13 +116,18 @@ std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) 
 
 std::vector<double> Mesh::tributary_measures(const std::vector<int>& set) const {
   std::vector<double> a(nodes.size(), 0.0);
-  for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += e.weight_a, a[e.b] += e.weight_b;
+  if (dim == 3)
+    for (const BoundaryFace& f : boundary_faces(set))
+      for (int k = 0; k < 4; ++k) a[f.nodes[k]] += f.weights[k];
+  else
+    for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += e.weight_a, a[e.b] += e.weight_b;
   std::vector<double> out;
   for (int n : set) out.push_back(a[n]);
   return out;
 }
 
 std::vector<double> Mesh::tributary_lengths(const std::vector<int>& set) const {
+  if (dim == 3) return tributary_measures(set);
   std::vector<double> a(nodes.size(), 0.0);
   for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += 0.5 * e.length, a[e.b] += 0.5 * e.length;
   std::vector<double> out;

@@ -1,6 +1,7 @@
 #include "rccm/fem/mesh_source.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/fem/box_mesh.hpp"
 #include "rccm/fem/gmsh_mesh.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
 
@@ -12,7 +13,7 @@
 namespace rccm {
 
 Mesh make_mesh(const Config& cfg) {
-  if (cfg.mesh.file.empty()) return make_rectangle(cfg.mesh);
+  if (cfg.mesh.file.empty()) return cfg.mesh.dim() == 3 ? make_box(cfg.mesh) : make_rectangle(cfg.mesh);
   Mesh m = read_gmsh(cfg.mesh, cfg.where("mesh.file"));
   try {
     add_box_sets(m, cfg.mesh.node_sets);

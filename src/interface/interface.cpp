@@ -72,11 +72,11 @@ class PairBuilder {
     if (p_.precrack.empty()) return out;
     std::vector<char> in(mesh_.num_nodes(), 0);
     for (int n : node_set(p_.precrack, ".precrack")) in[n] = 1;
-    std::vector<int> edges(mesh_.num_nodes(), 0), cracked(mesh_.num_nodes(), 0);
-    for (const BoundaryEdge& e : mesh_.boundary_edges(nodes_))
-      for (int n : {e.a, e.b}) {
+    std::vector<int> edges(mesh_.num_nodes(), 0), cracked(mesh_.num_nodes(), 0);  // facets (2D: edges) at each node
+    for (const std::vector<int>& f : mesh_.facets_within(nodes_))
+      for (int n : f) {
         ++edges[n];
-        cracked[n] += in[e.a] && in[e.b];
+        cracked[n] += std::all_of(f.begin(), f.end(), [&](int m) { return in[m] != 0; });
       }
     bool any = false;
     for (int n : nodes_) {
@@ -99,7 +99,7 @@ class PairBuilder {
   void face(ContactPair& c, std::size_t k) const {
     const Eigen::Vector3d& x = mesh_.nodes[c.node];
     if (p_.facing == Facing::Line) {
-      const FlatFoundation line{Eigen::Vector3d(p_.normal[0], p_.normal[1], 0.0).normalized()};
+      const FlatFoundation line{Eigen::Vector3d(p_.normal[0], p_.normal[1], p_.normal[2]).normalized()};
       c.frame = line.frame_at(x);
       c.g0 = per_node("g0", p_.g0, k);
       require_facing(c.frame.n, k, ".normal", "the foundation normal");

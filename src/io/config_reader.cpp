@@ -163,6 +163,18 @@ class Reader {
     return out;
   }
 
+  /// A point or a direction of the mesh's dimension: `dim` numbers (z = 0 in 2D).
+  std::array<double, 3> coordinates(const Setting& g, const char* name, int dim) const {
+    if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
+    const Setting& s = g[name];
+    const std::vector<double> v = numbers(s);
+    if (static_cast<int>(v.size()) != dim || s.isNumber())
+      fail(s, "must be an array of " + std::to_string(dim) + " numbers (the mesh is " + std::to_string(dim) + "D)");
+    std::array<double, 3> out{};
+    std::copy(v.begin(), v.end(), out.begin());
+    return out;
+  }
+
   /// A string that must be one of `choices`; returns its index.
   int choice(const Setting& g, const char* name, std::initializer_list<const char*> choices,
              int fallback) const {
@@ -385,14 +397,29 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
       for (int i = 0; i < g.getLength(); ++i) p.parameters[g[i].getName()] = r.number(g[i]);
     }
   } else {
-    r.only(m, {"origin", "size", "nx", "ny", "element", "rotation", "node_sets"});
-    p.size = r.fixed<2>(m, "size");
-    for (int k = 0; k < 2; ++k) r.check(p.size[k] > 0, m["size"], "lengths must be > 0", p.size[k]);
+    r.only(m, {"origin", "size", "nx", "ny", "nz", "element", "rotation", "node_sets"});
+    // [x, y]: the rectangle; [x, y, z]: the box (3D).
+    const bool box = m.exists("size") && m["size"].isArray() && m["size"].getLength() == 3;
+    const std::array<double, 3> size = r.coordinates(m, "size", box ? 3 : 2);
+    p.size = {size[0], size[1]};
+    p.depth = size[2];
+    for (int k = 0; k < (box ? 3 : 2); ++k) r.check(size[k] > 0, m["size"], "lengths must be > 0", size[k]);
     p.nx = r.integer(m, "nx", 0, true);
     p.ny = r.integer(m, "ny", 0, true);
     r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
     r.check(p.ny >= 1, m["ny"], "must be >= 1", p.ny);
-    p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4"}, 0));
+    if (box) {
+      p.nz = r.integer(m, "nz", 0, true);
+      r.check(p.nz >= 1, m["nz"], "must be >= 1", p.nz);
+      p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 2));
+      if (p.element != ElementType::H8) r.fail(m["element"], "a box (size with 3 numbers) is meshed with \"H8\" cells");
+      for (const char* key : {"rotation", "node_sets"})
+        if (m.exists(key)) r.fail(m[key], "is not available for a box yet (3D): use its faces and edges");
+    } else {
+      if (m.exists("nz")) r.fail(m["nz"], "applies to a box: give size three numbers [x, y, z]");
+      p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 0));
+      if (p.element == ElementType::H8) r.fail(m["element"], "H8 cells fill a box: give size three numbers [x, y, z] and nz");
+    }
   }
   if (m.exists("origin")) p.origin = r.fixed<2>(m, "origin");
   for (int k = 0; k < 2; ++k)
@@ -401,10 +428,10 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
   if (p.file.empty()) {
     // The assembly's triplets, the matrix and its Cholesky factor (~2.6 kB per unknown at a
     // million unknowns, measured): refused up front rather than failing after minutes.
-    const double nodes = (p.nx + 1.0) * (p.ny + 1.0), dofs = 2 * nodes;
+    const double nodes = (p.nx + 1.0) * (p.ny + 1.0) * (p.nz + 1.0), dofs = p.dim() * nodes;
     const double bytes = dofs * (600 + 100 * std::log2(std::max(dofs, 2.0)));
     if (bytes > available_memory())
-      r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + " mesh (" + short_number(dofs) +
+      r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + (p.nz ? " x " + std::to_string(p.nz) : "") + " mesh (" + short_number(dofs) +
                           " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
                           short_number(available_memory() / 1e9) + " GB available; use fewer cells");
   }
@@ -413,12 +440,14 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
   return p;
 }
 
-MaterialParams read_material(const Reader& r, const Setting& mat) {
+MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12)");
   MaterialParams p;
   p.path = mat.getPath();
   p.hypothesis = static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress", "axisymmetric"}, 0));
   p.orthotropic = mat.exists("E1");
+  if (dim == 3 && mat.exists("hypothesis")) r.fail(mat["hypothesis"], "a 3D body has no plane hypothesis: leave it out");
+  if (dim == 3 && p.orthotropic) r.fail(mat["E1"], "orthotropic materials are 2D only for now: give E and nu in 3D");
   if (!p.orthotropic) {
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
@@ -450,10 +479,10 @@ MaterialParams read_material(const Reader& r, const Setting& mat) {
 }
 
 /// The bodies and their materials: `material` for every body, or `bodies` by name.
-std::vector<BodyParams> read_bodies(const Reader& r, const Setting& root) {
+std::vector<BodyParams> read_bodies(const Reader& r, const Setting& root, int dim) {
   const bool one = root.exists("material"), several = root.exists("bodies");
   if (one == several) r.fail(root, "give exactly one of 'material' (one material for every body) or 'bodies' (one per body of the mesh)");
-  if (one) return {{"", read_material(r, r.group(root, "material"))}};
+  if (one) return {{"", read_material(r, r.group(root, "material"), dim)}};
   const Setting& list = root["bodies"];
   if (!list.isList() || list.getLength() == 0) r.fail(list, "must be a list ( { name = \"...\"; material = { ... }; }, ... )");
   std::vector<BodyParams> out;
@@ -461,7 +490,7 @@ std::vector<BodyParams> read_bodies(const Reader& r, const Setting& root) {
     const Setting& b = list[i];
     if (!b.isGroup()) r.fail(b, "must be a group { name = \"...\"; material = { ... }; }");
     r.only(b, {"name", "material"});
-    BodyParams p{r.text(b, "name", "", true), read_material(r, r.group(b, "material"))};
+    BodyParams p{r.text(b, "name", "", true), read_material(r, r.group(b, "material"), dim)};
     for (const BodyParams& earlier : out)
       if (earlier.name == p.name) r.fail(b["name"], "body '" + p.name + "' has a material already");
     const Setting& mat = b["material"];
@@ -472,7 +501,7 @@ std::vector<BodyParams> read_bodies(const Reader& r, const Setting& root) {
   return out;
 }
 
-InterfaceParams read_interface(const Reader& r, const Setting& in) {
+InterfaceParams read_interface(const Reader& r, const Setting& in, int dim) {
   if (!in.isGroup()) r.fail(in, "must be a group { boundary = ...; Cn = ...; ... }");
   r.only(in, {"boundary", "normal", "circle", "opposite", "tolerance", "precrack", "Cn", "Ct", "w", "alpha", "mu", "beta0", "g0"});
   InterfaceParams p;
@@ -481,11 +510,14 @@ InterfaceParams read_interface(const Reader& r, const Setting& in) {
   const int facings = in.exists("normal") + in.exists("circle") + in.exists("opposite");
   if (facings > 1) r.fail(in, "give one of 'normal' (a rigid line), 'circle' (a rigid circle) or 'opposite' (another body)");
   if (in.exists("normal")) {
-    p.normal = r.fixed<2>(in, "normal");
-    const double len = std::hypot(p.normal[0], p.normal[1]);
+    p.normal = r.coordinates(in, "normal", dim);
+    const double len = std::sqrt(p.normal[0] * p.normal[0] + p.normal[1] * p.normal[1] + p.normal[2] * p.normal[2]);
     r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
-    p.normal = {p.normal[0] / len, p.normal[1] / len};
+    p.normal = {p.normal[0] / len, p.normal[1] / len, p.normal[2] / len};
   }
+  if (dim == 3)
+    for (const char* key : {"circle", "opposite"})
+      if (in.exists(key)) r.fail(in[key], "is 2D only for now: a 3D interface faces a rigid plane ('normal')");
   if (in.exists("circle")) {
     const Setting& c = r.group(in, "circle");
     r.only(c, {"centre", "radius", "side"});
@@ -536,14 +568,14 @@ InterfaceParams read_interface(const Reader& r, const Setting& in) {
 }
 
 /// `interface` (one) or `interfaces` (a list).
-std::vector<InterfaceParams> read_interfaces(const Reader& r, const Setting& root) {
+std::vector<InterfaceParams> read_interfaces(const Reader& r, const Setting& root, int dim) {
   const bool one = root.exists("interface"), several = root.exists("interfaces");
   if (one == several) r.fail(root, "give exactly one of 'interface' (one interface) or 'interfaces' (a list of them)");
-  if (one) return {read_interface(r, r.group(root, "interface"))};
+  if (one) return {read_interface(r, r.group(root, "interface"), dim)};
   const Setting& list = root["interfaces"];
   if (!list.isList() || list.getLength() == 0) r.fail(list, "must be a list ( { boundary = ...; ... }, ... )");
   std::vector<InterfaceParams> out;
-  for (int i = 0; i < list.getLength(); ++i) out.push_back(read_interface(r, list[i]));
+  for (int i = 0; i < list.getLength(); ++i) out.push_back(read_interface(r, list[i], dim));
   return out;
 }
 
@@ -563,7 +595,7 @@ TimeParams read_time(const Reader& r, const Setting& root) {
   return p;
 }
 
-std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double T) {
+std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double T, int dim) {
   if (!root.exists("loads")) r.fail(root, "missing section 'loads'");
   const Setting& loads = root["loads"];
   if (!loads.isList()) r.fail(loads, "must be a list ( { node_set = ...; type = ...; ... }, ... )");
@@ -582,8 +614,11 @@ std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double 
       if (l.exists("component")) r.fail(l["component"], "a pressure acts along the boundary's normal: leave 'component' out");
     } else {
       if (!l.exists("component")) r.fail(l, "missing setting 'component'");
-      p.component = r.choice(l, "component", {"x", "y"}, 0);
+      p.component = r.choice(l, "component", {"x", "y", "z"}, 0);
+      if (p.component == 2 && dim == 2) r.fail(l["component"], "\"z\" is a component of a 3D mesh (a box)");
     }
+    if (dim == 3 && (p.kind == LoadKind::Traction || p.kind == LoadKind::Pressure))
+      r.fail(l["type"], "tractions and pressures are 2D only for now: in 3D give a displacement or nodal forces");
     p.amplitude = read_amplitude(r, l, T);
     out.push_back(p);
   }
@@ -659,7 +694,7 @@ IntegratorParams read_integrator(const Reader& r, const Setting& root) {
   return A;
 }
 
-OutputParams read_output(const Reader& r, const Setting& root, double T) {
+OutputParams read_output(const Reader& r, const Setting& root, double T, int dim) {
   OutputParams O;
   const Setting* o = r.optional_group(root, "output");
   if (!o) return O;
@@ -685,7 +720,7 @@ OutputParams read_output(const Reader& r, const Setting& root, double T) {
     for (int i = 0; i < ws.getLength(); ++i) {
       if (!ws[i].isGroup()) r.fail(ws[i], "must be a group { name = ...; point = [x, y]; }");
       r.only(ws[i], {"name", "point"});
-      const NamedPoint p{r.text(ws[i], "name", "", true), r.fixed<2>(ws[i], "point")};
+      const NamedPoint p{r.text(ws[i], "name", "", true), r.coordinates(ws[i], "point", dim)};
       if (p.name.empty()) r.fail(ws[i]["name"], "must not be empty (it names the columns of history.csv)");
       if (std::any_of(p.name.begin(), p.name.end(), [](unsigned char c) { return std::iscntrl(c); }))
         r.fail(ws[i]["name"], "must not hold control characters (tabs, line breaks)");
@@ -730,13 +765,14 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   c.file = path;
   r.only(root, {"mesh", "material", "bodies", "interface", "interfaces", "loads", "time", "solver", "integrator", "output"});
   c.mesh = read_mesh(r, root, std::filesystem::path(path).parent_path().string());
-  c.bodies = read_bodies(r, root);
-  c.interfaces = read_interfaces(r, root);
+  const int dim = c.mesh.dim();
+  c.bodies = read_bodies(r, root, dim);
+  c.interfaces = read_interfaces(r, root, dim);
   c.time = read_time(r, root);
-  c.loads = read_loads(r, root, c.time.T);
+  c.loads = read_loads(r, root, c.time.T, dim);
   c.solver = read_solver(r, root);
   c.integrator = read_integrator(r, root);
-  c.output = read_output(r, root, c.time.T);
+  c.output = read_output(r, root, c.time.T, dim);
   check_consistency(r, root, c);
   return c;
 }

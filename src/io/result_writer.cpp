@@ -66,7 +66,8 @@ std::vector<std::string> curves_header(const Config& cfg) {
     h.push_back(load_label(cfg, k) + " force [N]");
     h.push_back(load_label(cfg, k) + " displacement [mm]");
   }
-  for (const char* q : {"debonded length [mm]", "external work [N mm]", "strain energy [N mm]",
+  h.push_back(cfg.mesh.dim() == 3 ? "debonded area [mm2]" : "debonded length [mm]");
+  for (const char* q : {"external work [N mm]", "strain energy [N mm]",
                         "interface free energy change [N mm]", "damage dissipation [N mm]",
                         "friction dissipation [N mm]", "normal contact work [N mm]", "imbalance [N mm]"})
     h.push_back(q);
@@ -150,7 +151,10 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
   std::ostream& out = file.stream();
   const Interface& I = model_.interface();
   const Layout& L = I.layout;
-  std::vector<std::string> header = {"node", "x [mm]", "y [mm]", model_.mesh().axisymmetric ? "a [mm2]" : "a [mm]", "t [s]", "beta"};
+  const bool solid = model_.mesh().dim == 3;
+  std::vector<std::string> header = {"node", "x [mm]", "y [mm]"};
+  if (solid) header.push_back("z [mm]");
+  header.insert(header.end(), {model_.mesh().axisymmetric || solid ? "a [mm2]" : "a [mm]", "t [s]", "beta"});
   for (const char* q : {"u", "Rbar", "Radh", "r", "p"})
     for (const std::string& c : component_labels(L.dim))
       header.push_back(std::string(q) + "_" + c + (q[0] == 'u' ? " [mm]" : q[0] == 'p' ? " [MPa]" : " [N]"));
@@ -162,7 +166,9 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
     const Eigen::Vector3d& x = model_.mesh().nodes[I.pairs[i].node];
     const double a = I.pairs[i].measure;
     std::vector<std::string> row = {std::to_string(i)};
-    for (double v : {x.x(), x.y(), a, s.t, s.beta[i]}) row.push_back(csv_number(v));
+    for (double v : {x.x(), x.y()}) row.push_back(csv_number(v));
+    if (solid) row.push_back(csv_number(x.z()));
+    for (double v : {a, s.t, s.beta[i]}) row.push_back(csv_number(v));
     for (const Eigen::VectorXd* v : {&s.u, &s.Rbar, &Radh, &b.r})
       for (double value : normal_first(L, *v, i)) row.push_back(csv_number(value));
     for (double value : normal_first(L, b.r, i)) row.push_back(csv_number(value / a));

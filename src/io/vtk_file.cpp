@@ -90,14 +90,15 @@ void VtkFile::write(const std::string& path) const {
   AtomicFile file(path);
   std::ostream& out = file.stream();
   const char* type = grid ? "UnstructuredGrid" : "PolyData";
+  const char* section = grid ? "Cells" : kind_ == Kind::PolySurface ? "Polys" : "Lines";
   out << "<?xml version=\"1.0\"?>\n<VTKFile type=\"" << type << "\" version=\"1.0\" byte_order=\"LittleEndian\" "
       << "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n<" << type << ">\n<Piece NumberOfPoints=\""
-      << points << (grid ? "\" NumberOfCells=\"" : "\" NumberOfLines=\"") << cells_count_ << "\">\n<Points>\n";
+      << points << "\" NumberOf" << section << "=\"" << cells_count_ << "\">\n<Points>\n";
   std::size_t k = 0;
   declare(out, *order[k], offsets[k]), ++k;
-  out << "</Points>\n" << (grid ? "<Cells>\n" : "<Lines>\n");
+  out << "</Points>\n<" << section << ">\n";
   for (std::size_t j = 0; j < topology_.size(); ++j) declare(out, *order[k], offsets[k]), ++k;
-  out << (grid ? "</Cells>\n" : "</Lines>\n") << "<PointData>\n";
+  out << "</" << section << ">\n<PointData>\n";
   for (std::size_t j = 0; j < point_data_.size(); ++j) declare(out, *order[k], offsets[k]), ++k;
   out << "</PointData>\n<CellData>\n";
   for (std::size_t j = 0; j < cell_data_.size(); ++j) declare(out, *order[k], offsets[k]), ++k;

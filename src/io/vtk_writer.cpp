@@ -39,7 +39,7 @@ void VtkWriter::write_bodies(const std::string& file, const BodyState& b) const 
   }
   vtu.points(xyz);
   std::vector<int> types;
-  for (const auto& cell : mesh.cells) types.push_back(cell.size() == 3 ? 5 : 9);  // VTK_TRIANGLE, VTK_QUAD
+  for (const auto& cell : mesh.cells) types.push_back(cell.size() == 3 ? 5 : cell.size() == 4 ? 9 : 12);  // VTK_TRIANGLE, VTK_QUAD, VTK_HEXAHEDRON
   vtu.cells(mesh.cells, types);
   vtu.point_data(VtkFile::floats("displacement", 3, u, {"x", "y", "z"}));
   // The out-of-plane components from each body's material (Material::complete): eps_zz = 0
@@ -48,7 +48,14 @@ void VtkWriter::write_bodies(const std::string& file, const BodyState& b) const 
   const CellFields f = cell_fields(mesh, model_.materials(), b.u);
   std::vector<double> strain_t, stress_t, von_mises;
   std::vector<std::int64_t> body(mesh.cell_body.begin(), mesh.cell_body.end());
-  for (Eigen::Index c = 0; c < f.strain.cols(); ++c) {
+  for (Eigen::Index c = 0; c < f.strain.cols() && mesh.dim == 3; ++c) {  // Voigt3: xx, yy, zz, yz, xz, xy
+    const Voigt3 e = f.strain.col(c), s = f.stress.col(c);
+    strain_t.insert(strain_t.end(), {e[0], e[5] / 2, e[4] / 2, e[5] / 2, e[1], e[3] / 2, e[4] / 2, e[3] / 2, e[2]});
+    stress_t.insert(stress_t.end(), {s[0], s[5], s[4], s[5], s[1], s[3], s[4], s[3], s[2]});
+    const double a = s[0] - s[1], d = s[1] - s[2], g = s[2] - s[0];
+    von_mises.push_back(std::sqrt(0.5 * (a * a + d * d + g * g) + 3 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])));
+  }
+  for (Eigen::Index c = 0; c < f.strain.cols() && mesh.dim == 2; ++c) {
     const Voigt eps = f.strain.col(c), sigma = f.stress.col(c);
     push_tensor(strain_t, eps[0], eps[1], 0.5 * eps[2], eps[3]);
     push_tensor(stress_t, sigma[0], sigma[1], sigma[2], sigma[3]);
@@ -66,7 +73,7 @@ void VtkWriter::write_interface(const std::string& file, const InterfaceState& s
   const Mesh& mesh = model_.mesh();
   const Interface& I = model_.interface();
   const Layout& L = I.layout;
-  VtkFile vtp(VtkFile::Kind::PolyData);
+  VtkFile vtp(mesh.dim == 3 ? VtkFile::Kind::PolySurface : VtkFile::Kind::PolyData);
   std::vector<double> xyz;
   std::vector<int> pair_of_node(mesh.num_nodes(), -1), nodes;
   for (int i = 0; i < I.size(); ++i) {
@@ -76,9 +83,12 @@ void VtkWriter::write_interface(const std::string& file, const InterfaceState& s
     nodes.push_back(n);
   }
   vtp.points(xyz);
-  std::vector<std::vector<int>> lines;
-  for (const auto& f : mesh.facets_within(nodes)) lines.push_back({pair_of_node[f[0]], pair_of_node[f[1]]});
-  vtp.cells(lines, std::vector<int>(lines.size(), 3));  // VTK_LINE
+  std::vector<std::vector<int>> facets;  // 2D: lines, 3D: quads, of the interface's facets
+  for (const auto& f : mesh.facets_within(nodes)) {
+    facets.emplace_back();
+    for (int n : f) facets.back().push_back(pair_of_node[n]);
+  }
+  vtp.cells(facets, std::vector<int>(facets.size(), mesh.dim == 3 ? 9 : 3));  // VTK_QUAD, VTK_LINE
   // Local components: tangential first, normal last, named.
   const std::vector<std::string> local = L.dim == 2 ? std::vector<std::string>{"t", "n"}
                                                     : std::vector<std::string>{"t1", "t2", "n"};

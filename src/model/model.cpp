@@ -24,7 +24,7 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
                          const std::string& list, const std::vector<int>& candidates, double reach, const char* what) {
   std::vector<int> out;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector3d p = mesh.placement(Eigen::Vector3d(points[k].point[0], points[k].point[1], 0.0));
+    const Eigen::Vector3d p = mesh.placement(Eigen::Vector3d(points[k].point[0], points[k].point[1], points[k].point[2]));
     const auto distance = [&](std::size_t j) { return (mesh.nodes[candidates[j]] - p).norm(); };
     std::size_t best = 0;
     for (std::size_t j = 1; j < candidates.size(); ++j)

@@ -21,10 +21,11 @@ struct NodeSetDef {
   std::array<double, 4> box{};
 };
 
-enum class ElementType { T3, Q4 };
+enum class ElementType { T3, Q4, H8 };
 enum class Hypothesis { PlaneStrain, PlaneStress, Axisymmetric };
 
-/// The mesh source: a gmsh file (`file` set) or the built-in structured rectangle.
+/// The mesh source: a gmsh file (`file` set), the built-in structured rectangle, or the
+/// built-in box of H8 cells (`nz` > 0: 3D).
 struct MeshParams {
   std::string file;                        // a .msh (MSH 2.2 or 4.1) or .geo file, relative to the config; empty: the rectangle
   int refine = 0;                          // file: uniform refinements (each splits every cell in 4)
@@ -33,7 +34,10 @@ struct MeshParams {
   std::array<double, 2> origin{0.0, 0.0};  // mm
   std::array<double, 2> size{};            // mm
   int nx = 0, ny = 0;                      // cells along x and y
+  double depth = 0.0;                      // box: its extent along z from z = 0, mm (size's third number)
+  int nz = 0;                              // box: cells along z; 0: a 2D mesh
   ElementType element = ElementType::T3;
+  int dim() const { return nz > 0 ? 3 : 2; }
   double rotation = 0.0;                   // degrees, counter-clockwise about `origin`
   std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners (or the file's groups)
 };
@@ -69,7 +73,7 @@ struct InterfaceParams {
   std::string path = "interface";          // its section in the config, for messages
   std::string boundary;                    // node set of the contact nodes (body A)
   Facing facing = Facing::Line;
-  std::array<double, 2> normal{0.0, 1.0};  // line: its normal, into the body (unit)
+  std::array<double, 3> normal{0.0, 1.0, 0.0};  // line (3D: plane): its normal, into the body (unit)
   std::array<double, 2> centre{};          // circle: centre, mm (global frame)
   double radius = 0.0;                     // circle: radius, mm
   bool inside = true;                      // circle: the body lies inside it (a hole), or outside (a cylinder)
@@ -94,7 +98,7 @@ struct LoadParams {
   std::string path;  // "loads.[k]", for messages
   std::string node_set;
   LoadKind kind = LoadKind::Displacement;
-  int component = 0;  // 0 = x, 1 = y
+  int component = 0;  // 0 = x, 1 = y, 2 = z (3D)
   TimeFunction amplitude;
 };
 
@@ -156,7 +160,7 @@ struct IntegratorParams {
 /// nearest contact pair) or a probe of a body (the nearest mesh node).
 struct NamedPoint {
   std::string name;
-  std::array<double, 2> point{};
+  std::array<double, 3> point{};  // z = 0 in 2D
 };
 
 struct OutputParams {

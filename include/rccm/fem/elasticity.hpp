@@ -16,9 +16,10 @@ namespace rccm {
 /// K = sum_e int B^T D B dV, dV = dA per unit thickness, or 2 pi r dA (axisymmetric), N/mm.
 SparseMatrix assemble_stiffness(const Mesh& mesh, const std::vector<Material>& body_materials);
 
-/// Strain and stress (Voigt xx, yy, xy, zz; Material::complete) at each cell centre.
+/// Strain and stress at each cell centre, a column per cell: 2D Voigt (xx, yy, xy, zz;
+/// Material::complete), 3D Voigt3 (xx, yy, zz, yz, xz, xy).
 struct CellFields {
-  Eigen::Matrix4Xd strain, stress;
+  Eigen::MatrixXd strain, stress;
 };
 CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_materials, const Eigen::VectorXd& u);
 

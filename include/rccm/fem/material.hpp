@@ -11,6 +11,7 @@
 namespace rccm {
 
 using Voigt = Eigen::Vector4d;  // xx, yy, xy (engineering in a strain), zz
+using Voigt3 = Eigen::Matrix<double, 6, 1>;  // 3D: xx, yy, zz, yz, xz, xy (engineering shears in a strain)
 
 class Material {
  public:
@@ -26,9 +27,13 @@ class Material {
 
   Hypothesis hypothesis() const { return hypothesis_; }
 
+  /// The 3D law, sigma = D3 eps in the Voigt order of Voigt3 (isotropic bodies).
+  const Eigen::Matrix<double, 6, 6>& D3() const { return D3_; }
+
  private:
   Hypothesis hypothesis_;
   Eigen::Matrix4d D_, S_;  // S_: the compliance of the (xx, yy, xy, zz) block of the 3D law
+  Eigen::Matrix<double, 6, 6> D3_ = Eigen::Matrix<double, 6, 6>::Zero();
 };
 
 /// The compliance of `p` in its material axes (Voigt 11, 22, 33, 23, 13, 12, engineering

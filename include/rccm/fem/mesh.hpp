@@ -29,6 +29,15 @@ struct BoundaryEdge {
   double length = 0;                  // mm
 };
 
+/// A boundary facet of a 3D node set (a quad, counter-clockwise seen from outside), with its
+/// outward unit normal, its area and the consistent weights int N_a dA of its nodes.
+struct BoundaryFace {
+  std::vector<int> nodes;
+  Eigen::Vector3d outward = Eigen::Vector3d::Zero();
+  std::vector<double> weights;  // mm^2
+  double area = 0;              // mm^2
+};
+
 struct Mesh {
   int dim = 2;
   bool axisymmetric = false;                     // a meridian section (x = r >= 0, y = z): measures carry 2 pi r
@@ -36,7 +45,7 @@ struct Mesh {
   std::vector<std::vector<int>> cells;           // node lists, counter-clockwise in 2D
   std::vector<int> cell_body;                    // body of each cell: an index in body_names
   std::vector<std::string> body_names;           // the bodies (physical surfaces of a gmsh file; "body" for the rectangle)
-  std::vector<std::vector<int>> facets;          // boundary facets (edges in 2D), each of one cell only
+  std::vector<std::vector<int>> facets;          // boundary facets (edges in 2D, quads counter-clockwise seen from outside in 3D), each of one cell only
   std::map<std::string, std::vector<int>> node_sets;
   Placement placement;
   std::string source;                            // the file it was read from, for messages ("" for the rectangle)
@@ -53,18 +62,22 @@ struct Mesh {
   /// Boundary facets whose nodes all belong to `set`.
   std::vector<std::vector<int>> facets_within(const std::vector<int>& set) const;
 
-  /// The boundary edges within `set`, with their outward normals and nodal weights.
+  /// The boundary edges within `set`, with their outward normals and nodal weights (2D).
   std::vector<BoundaryEdge> boundary_edges(const std::vector<int>& set) const;
 
-  /// Unit outward normal of the boundary per node of `set`: the average of its edges' in the
-  /// set, weighted by their length; zero for a node on no such edge.
+  /// The boundary quads within `set`, with their outward normals and nodal weights (3D).
+  std::vector<BoundaryFace> boundary_faces(const std::vector<int>& set) const;
+
+  /// Unit outward normal of the boundary per node of `set`: the average of its facets' in the
+  /// set, weighted by their measure; zero for a node on no such facet.
   std::vector<Eigen::Vector3d> outward_normals(const std::vector<int>& set) const;
 
   /// Consistent (= lumped, for linear edges) measure per node of `set`: int N_i dS over its
-  /// edges in the set, mm (axisymmetric: mm^2, the area of the ring); 0 on no such edge.
+  /// facets in the set, mm (axisymmetric: mm^2, the area of the ring; 3D: mm^2); 0 on none.
   std::vector<double> tributary_measures(const std::vector<int>& set) const;
 
-  /// Half the length of each adjacent edge in `set`, mm (in the plane of the mesh).
+  /// Half the length of each adjacent edge in `set`, mm (in the plane of the mesh); in 3D the
+  /// tributary area, mm^2 (what a debonded measure sums).
   std::vector<double> tributary_lengths(const std::vector<int>& set) const;
 };
 

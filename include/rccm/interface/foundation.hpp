@@ -18,7 +18,8 @@ struct Frame {
   const Eigen::Vector3d& axis(int k, int dim) const { return k == dim - 1 ? n : (k == 0 ? t1 : t2); }
 };
 
-/// 2D: the frame of unit normal n, with t = (n_y, -n_x) (t, n right-handed like x, y).
+/// The frame of unit normal n: t1 = (n_y, -n_x, 0) (2D: t, n right-handed like x, y), made unit,
+/// or x when n is along z; t2 = n x t1 (3D: t1, t2, n right-handed).
 Frame plane_frame(const Eigen::Vector3d& n);
 
 struct FlatFoundation {

@@ -13,7 +13,7 @@ namespace rccm {
 
 class VtkFile {
  public:
-  enum class Kind { UnstructuredGrid, PolyData };
+  enum class Kind { UnstructuredGrid, PolyData, PolySurface };  // PolyData: lines; PolySurface: polygons
   /// One array of `components` values per point or cell, stored as Float64, Int64, Int32 or UInt8.
   struct Array {
     std::string name;
