@@ -515,14 +515,13 @@ InterfaceParams read_interface(const Reader& r, const Setting& in, int dim) {
     r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
     p.normal = {p.normal[0] / len, p.normal[1] / len, p.normal[2] / len};
   }
-  if (dim == 3)
-    for (const char* key : {"circle", "opposite"})
-      if (in.exists(key)) r.fail(in[key], "is 2D only for now: a 3D interface faces a rigid plane ('normal')");
+  if (dim == 3 && in.exists("opposite"))
+    r.fail(in["opposite"], "is 2D only for now: a 3D interface faces a rigid plane ('normal') or sphere ('circle')");
   if (in.exists("circle")) {
     const Setting& c = r.group(in, "circle");
     r.only(c, {"centre", "radius", "side"});
     p.facing = Facing::Circle;
-    p.centre = r.fixed<2>(c, "centre");
+    p.centre = r.coordinates(c, "centre", dim);
     p.radius = r.number(c, "radius");
     r.check(p.radius > 0, c["radius"], "must be > 0", p.radius);
     if (!c.exists("side")) r.fail(c, "missing setting 'side': \"inside\" (the body fills a circular hole) or \"outside\" (it wraps a cylinder)");

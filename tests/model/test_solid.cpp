@@ -12,7 +12,10 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <iomanip>
 #include <map>
+#include <sstream>
 
 using namespace rccm;
 
@@ -211,4 +214,85 @@ TEST_CASE("the frame of a plane in 3D: orthonormal, right-handed, t1 horizontal"
   // The 2D frame is unchanged: t = (n_y, -n_x), exactly.
   const Frame f = plane_frame(Eigen::Vector3d(0.6, 0.8, 0));
   CHECK(f.t1 == Eigen::Vector3d(0.8, -0.6, 0));
+}
+
+namespace {
+
+// 3D Hertz contact (Johnson, Contact Mechanics, s4.2): a rigid sphere of radius R pressed with
+// a force P into an elastic half-space (E* = E / (1 - nu^2)):
+//   a^3 = 3 P R / (4 E*),  p(r) = p0 sqrt(1 - r^2 / a^2),  p0 = 3 P / (2 pi a^2).
+// The model: a quarter of a 4 mm cube (u_x = 0 on x = 0, u_z = 0 on z = 0), its bottom pushed
+// up 0.1 mm against the sphere centred above its corner (0, 4, 0); frictionless and unbonded.
+// P is the contact forces' vertical resultant (times 4), a and p0 follow from it.
+struct Hertz3D {
+  double h = 0, a = 0, p0 = 0;  // cell length; Hertz's radius and peak pressure for the FE's P
+  double last = 0, peak = 0;    // the last pair in contact (its distance from the axis), the pressure on the axis
+  double l2 = 0;                // relative L2 (tributary) error of Rbar_n / a against p(r)
+  double penetration = 0, complementarity = 0, friction = 0;
+};
+
+Hertz3D hertz_sphere(int n) {
+  const double R = 10, E = 1000, nu = 0.3, L = 4;
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(3) << "mesh = { size = [4.0, 4.0, 4.0]; nx = " << n << "; ny = " << n << "; nz = " << n << "; element = \"H8\"; };\n"
+       << "material = { E = " << E << "; nu = " << nu << "; };\n"
+       << "interface = { boundary = \"top\"; circle = { centre = [0.0, " << L + R << ", 0.0]; radius = " << R
+       << "; side = \"outside\"; }; Cn = 1000.0; Ct = 1000.0; w = 0.0; mu = 0.0; beta0 = 0.0; };\n"
+       << "loads = ( { node_set = \"bottom\"; type = \"displacement\"; component = \"y\"; value = 0.1; },\n"
+       << "          { node_set = \"left\"; type = \"displacement\"; component = \"x\"; value = 0.0; },\n"
+       << "          { node_set = \"back\"; type = \"displacement\"; component = \"z\"; value = 0.0; } );\n"
+       << "time = { T = 1.0; steps = 1; };\nintegrator = { method = \"contact-only\"; };\n";
+  const Config cfg = test::config_from_text(text.str());
+  const Model model = test::make_model(cfg);
+  const Snapshot s = Simulation(cfg).run().snapshots.back();
+  const Interface& I = model.interface();
+  Hertz3D out;
+  out.h = L / n;
+  double P = 0, Rn_max = 0, un_max = 0;
+  for (int i = 0; i < I.size(); ++i) {
+    P -= s.Rbar[3 * i + 2] * I.pairs[i].frame.n.y();  // the sphere pushes the body down
+    Rn_max = std::max(Rn_max, s.Rbar[3 * i + 2]);
+    un_max = std::max(un_max, std::abs(s.u[3 * i + 2]));
+  }
+  P *= 4;
+  const double Es = E / (1 - nu * nu);
+  out.a = std::cbrt(3 * P * R / (4 * Es));
+  out.p0 = 3 * P / (2 * M_PI * out.a * out.a);
+  double num = 0, den = 0;
+  for (int i = 0; i < I.size(); ++i) {
+    const ContactPair& c = I.pairs[i];
+    const Eigen::Vector3d& x = model.mesh().nodes[c.node];
+    const double r = std::hypot(x.x(), x.z()), Rn = s.Rbar[3 * i + 2], g = c.g0 + s.u[3 * i + 2];
+    const double p = Rn / c.measure, exact = out.p0 * std::sqrt(std::max(0.0, 1 - r * r / (out.a * out.a)));
+    num += c.measure * (p - exact) * (p - exact);
+    den += c.measure * exact * exact;
+    if (Rn > 1e-9 * Rn_max) out.last = std::max(out.last, r);
+    if (r == 0) out.peak = p;
+    out.penetration = std::max(out.penetration, std::max(0.0, -g) / un_max);
+    out.complementarity = std::max(out.complementarity, std::abs(g * Rn) / (Rn_max * un_max));
+    out.friction = std::max(out.friction, std::hypot(s.Rbar[3 * i], s.Rbar[3 * i + 1]));
+  }
+  out.l2 = std::sqrt(num / den);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("3D Hertz: a rigid sphere pressed into an elastic block, the gap from the geometry: contact radius "
+          "and peak pressure against Hertz",
+          "[solid]") {
+  std::vector<double> l2;
+  for (int n : {8, 12}) {
+    const Hertz3D r = hertz_sphere(n);
+    l2.push_back(r.l2);
+    INFO("n = " << n << ": a " << r.a << ", last " << r.last << ", peak " << r.peak << " vs p0 " << r.p0 << ", L2 " << r.l2);
+    CHECK(r.a > 2 * r.h);                                  // resolved: a few cells across
+    CHECK(std::abs(r.last - r.a) <= r.h);                  // the contact ends within a cell of a
+    CHECK(std::abs(r.peak / r.p0 - 1) <= 0.02);            // measured 0.7 % (the block is no half-space)
+    CHECK(r.l2 <= 0.25);                                   // the profile, nodal pressures against p(r)
+    CHECK(r.friction == 0.0);                              // frictionless, unbonded
+    CHECK(r.penetration < 1e-9);                           // Signorini
+    CHECK(r.complementarity < 1e-9);
+  }
+  CHECK(l2[1] < 0.6 * l2[0]);  // the profile converges: measured 0.143 -> 0.057 for h 0.5 -> 0.33
 }

@@ -1,6 +1,7 @@
 // The rigid foundation an interface faces, and the local frame and initial gap it gives each
 // contact node (docs/MODEL.md s2): a line, given by its unit normal pointing into the body,
-// or a circle with the body inside it (a hole) or outside it (a cylinder).
+// or a circle with the body inside it (a hole) or outside it (a cylinder); in 3D a plane or a
+// sphere.
 #pragma once
 
 #include <Eigen/Core>
