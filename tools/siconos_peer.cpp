@@ -18,6 +18,7 @@ extern "C" {
 #include <siconos/numerics/SolverOptions.h>
 #include <siconos/numerics/SparseBlockMatrix.h>
 #include <siconos/numerics/fc2d_compute_error.h>
+#include <siconos/numerics/fc3d_compute_error.h>
 #include <suitesparse/cs.h>  // the layout of Siconos' CSparseMatrix (cs_dl with SICONOS_INT64)
 }
 #undef restrict
@@ -26,32 +27,43 @@ namespace rccm::peer {
 
 namespace {
 
-/// Swaps (t, n) and (n, t) in each pair.
-Eigen::VectorXd swap_pairs(const Eigen::VectorXd& v) {
+/// Our index of Siconos' component k of a pair of `dim` components: Siconos puts the normal
+/// first (n, t) / (n, t1, t2), we put it last (t, n) / (t1, t2, n).
+int ours(int index, int dim) {
+  const int k = index % dim;
+  return index - k + (k == 0 ? dim - 1 : k - 1);
+}
+
+/// Siconos' order of v (ours), or ours of v (Siconos') with `back`.
+Eigen::VectorXd swap_pairs(const Eigen::VectorXd& v, int dim, bool back = false) {
   Eigen::VectorXd out(v.size());
-  for (Eigen::Index i = 0; i + 1 < v.size(); i += 2) out[i] = v[i + 1], out[i + 1] = v[i];
+  for (int i = 0; i < v.size(); ++i) {
+    if (back)
+      out[ours(i, dim)] = v[i];  // v in Siconos' order
+    else
+      out[i] = v[ours(i, dim)];  // v in ours
+  }
   return out;
 }
 
-Eigen::MatrixXd swap_pairs(const Eigen::MatrixXd& W) {
-  Eigen::VectorXi perm(W.rows());
-  for (Eigen::Index i = 0; i + 1 < W.rows(); i += 2) perm[i] = static_cast<int>(i + 1), perm[i + 1] = static_cast<int>(i);
+Eigen::MatrixXd swap_pairs(const Eigen::MatrixXd& W, int dim) {
   Eigen::MatrixXd out(W.rows(), W.cols());
-  for (Eigen::Index j = 0; j < W.cols(); ++j)
-    for (Eigen::Index i = 0; i < W.rows(); ++i) out(i, j) = W(perm[i], perm[j]);
+  for (int j = 0; j < W.cols(); ++j)
+    for (int i = 0; i < W.rows(); ++i) out(i, j) = W(ours(i, dim), ours(j, dim));
   return out;
 }
 
 /// W in Siconos' storage, normal first: dense, or sparse by 2 x 2 blocks (its fc2d NSGS for
 /// sparse problems, fc2d_nsgs_sbm; its driver aborts on compressed-column storage).
-NumericsMatrix* to_siconos(const DelassusOperator& W) {
+NumericsMatrix* to_siconos(const DelassusOperator& W, int dim) {
   const int n = static_cast<int>(W.size());
   if (const Eigen::MatrixXd* dense = W.dense()) {
     NumericsMatrix* M = NM_create(NM_DENSE, n, n);
-    const Eigen::MatrixXd Ws = swap_pairs(*dense);
+    const Eigen::MatrixXd Ws = swap_pairs(*dense, dim);
     std::memcpy(M->matrix0, Ws.data(), sizeof(double) * n * n);
     return M;
   }
+  RCCM_VERIFY(dim == 2, "sparse W for Siconos: 2D problems");
   const Eigen::SparseMatrix<double>& S = dynamic_cast<const SparseDelassus&>(W).matrix();
   NumericsMatrix* T = NM_create(NM_SPARSE, n, n);
   NM_triplet_alloc(T, S.nonZeros());
@@ -66,17 +78,22 @@ NumericsMatrix* to_siconos(const DelassusOperator& W) {
 
 /// A Siconos problem owning copies of the data (normal first).
 FrictionContactProblem* to_siconos(const PlainContactProblem& p) {
-  const int n = static_cast<int>(p.q.size()), nc = n / 2;
-  NumericsMatrix* M = to_siconos(*p.W);
+  const int n = static_cast<int>(p.q.size()), nc = n / p.dim;
+  NumericsMatrix* M = to_siconos(*p.W, p.dim);
   auto* q = static_cast<double*>(std::malloc(sizeof(double) * n));
   auto* mu = static_cast<double*>(std::malloc(sizeof(double) * nc));
-  const Eigen::VectorXd qs = swap_pairs(p.q);
+  const Eigen::VectorXd qs = swap_pairs(p.q, p.dim);
   std::memcpy(q, qs.data(), sizeof(double) * n);
   std::memcpy(mu, p.mu.data(), sizeof(double) * nc);
-  return frictionContactProblem_new_with_data(2, nc, M, q, mu);
+  return frictionContactProblem_new_with_data(p.dim, nc, M, q, mu);
 }
 
-int solver_id(const std::string& name) {
+int solver_id(const std::string& name, int dim) {
+  if (dim == 3) {
+    if (name == "nsgs") return SICONOS_FRICTION_3D_NSGS;
+    if (name == "nsn") return SICONOS_FRICTION_3D_NSN_AC;
+    throw InputError("unknown Siconos 3D solver '" + name + "' (nsgs, nsn)");
+  }
   if (name == "nsgs") return SICONOS_FRICTION_2D_NSGS;
   if (name == "lemke") return SICONOS_FRICTION_2D_LEMKE;
   if (name == "enum") return SICONOS_FRICTION_2D_ENUM;
@@ -108,9 +125,9 @@ PlainContactProblem read_dat(const std::string& path) {
     Eigen::MatrixXd W(n, n);
     for (int j = 0; j < n; ++j)
       for (int i = 0; i < n; ++i) W(i, j) = NM_get_value(fc->M, i, j);
-    p.W = std::make_shared<DenseDelassus>(swap_pairs(W));
+    p.W = std::make_shared<DenseDelassus>(swap_pairs(W, 2));  // (n, t) and (t, n): the swap is its own inverse
   }
-  p.q = swap_pairs(Eigen::Map<const Eigen::VectorXd>(fc->q, n).eval());
+  p.q = swap_pairs(Eigen::Map<const Eigen::VectorXd>(fc->q, n).eval(), 2);
   p.mu = Eigen::Map<const Eigen::VectorXd>(fc->mu, fc->numberOfContacts);
   frictionContactProblem_free(fc);
   return p;
@@ -118,17 +135,18 @@ PlainContactProblem read_dat(const std::string& path) {
 
 PeerSolution solve(const PlainContactProblem& p, const std::string& solver, double tolerance, int max_iterations) {
   FrictionContactProblem* fc = to_siconos(p);
-  SolverOptions* options = solver_options_create(solver_id(solver));
+  SolverOptions* options = solver_options_create(solver_id(solver, p.dim));
   options->iparam[SICONOS_IPARAM_MAX_ITER] = max_iterations;
   options->dparam[SICONOS_DPARAM_TOL] = tolerance;
   const int n = static_cast<int>(p.q.size());
   Eigen::VectorXd reaction = Eigen::VectorXd::Zero(n), velocity = Eigen::VectorXd::Zero(n);
   PeerSolution s;
   const auto start = std::chrono::steady_clock::now();
-  s.info = fc2d_driver(fc, reaction.data(), velocity.data(), options);
+  s.info = p.dim == 3 ? fc3d_driver(fc, reaction.data(), velocity.data(), options)
+                      : fc2d_driver(fc, reaction.data(), velocity.data(), options);
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   s.iterations = options->iparam[SICONOS_IPARAM_ITER_DONE];
-  s.R = swap_pairs(reaction);
+  s.R = swap_pairs(reaction, p.dim, true);
   solver_options_delete(options);
   frictionContactProblem_free(fc);
   s.error = error(p, s.R);
@@ -137,12 +155,18 @@ PeerSolution solve(const PlainContactProblem& p, const std::string& solver, doub
 
 double error(const PlainContactProblem& p, const Eigen::VectorXd& R) {
   FrictionContactProblem* fc = to_siconos(p);
-  Eigen::VectorXd z = swap_pairs(R);
+  Eigen::VectorXd z = swap_pairs(R, p.dim);
   Eigen::VectorXd WR(R.size());
   p.W->multiply(R, WR);
-  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(WR + p.q));
+  Eigen::VectorXd w = swap_pairs(Eigen::VectorXd(WR + p.q), p.dim);
   double e = 0;
-  fc2d_compute_error(fc, z.data(), w.data(), 1e-300, std::max(p.q.norm(), 1e-300), &e);
+  if (p.dim == 3) {
+    SolverOptions* options = solver_options_create(SICONOS_FRICTION_3D_NSGS);
+    fc3d_compute_error(fc, z.data(), w.data(), 1e-300, options, std::max(p.q.norm(), 1e-300), &e);
+    solver_options_delete(options);
+  } else {
+    fc2d_compute_error(fc, z.data(), w.data(), 1e-300, std::max(p.q.norm(), 1e-300), &e);
+  }
   frictionContactProblem_free(fc);
   return e;
 }

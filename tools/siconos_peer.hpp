@@ -1,6 +1,6 @@
 // Siconos numerics (Debian libsiconos-numerics-dev) as an independent peer for the contact
-// step: its fc2d solvers and error measure on our plain contact problems. Siconos orders each
-// contact (normal, tangent); ours is (tangent, normal): the swap happens here only.
+// step: its fc2d and fc3d solvers and error measures on our plain contact problems. Siconos
+// orders each contact normal first; ours puts it last: the reordering happens here only.
 #pragma once
 
 #include "rccm/base/config.hpp"
@@ -24,10 +24,11 @@ struct PeerSolution {
 /// Reads a Siconos .dat frictional contact problem (dimension 2) into the plain form.
 PlainContactProblem read_dat(const std::string& path);
 
-/// Solves with fc2d_driver: "nsgs", "lemke" or "enum".
+/// Solves with fc2d_driver: "nsgs", "lemke" or "enum"; 3D problems with fc3d_driver: "nsgs"
+/// or "nsn" (semi-smooth Newton on the Alart-Curnier function).
 PeerSolution solve(const PlainContactProblem& p, const std::string& solver, double tolerance, int max_iterations);
 
-/// fc2d_compute_error of a solution R ((t, n) order), normalised by |q|.
+/// fc2d_compute_error (3D: fc3d_compute_error) of a solution R (our order), normalised by |q|.
 double error(const PlainContactProblem& p, const Eigen::VectorXd& R);
 
 /// A condensed contact problem of a run: the one its commit solve met at an accepted step.

@@ -106,3 +106,38 @@ TEST_CASE("B1, B2 and two-body (ENF) condensed problems: Siconos and each of our
     }
   }
 }
+
+TEST_CASE("Siconos fc3d on the corner peel's condensed 3D problems: its NSGS and semi-smooth Newton, and our "
+          "solvers, give the same reactions",
+          "[peer]") {
+  // A plate lifted by one corner (6 x 1 x 6 H8, 49 contact pairs), as config/corner-peel.cfg: its
+  // commit problems every 40 accepted steps, springs and previous slip folded into the plain
+  // form (Siconos knows neither); some pairs bonded, some debonded, sliding in 2D directions.
+  const Config cfg = test::config_from_text(R"(
+mesh = { size = [6.0, 1.0, 6.0]; nx = 6; ny = 1; nz = 6; element = "H8"; };
+material = { E = 6.9e4; nu = 0.333; };
+interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
+loads = ( { node_set = "top_left_back"; type = "displacement"; component = "y"; value = 0.15; } );
+time = { T = 5.0; };
+solver = { active_set = false; };
+)");
+  const Model model = test::make_model(cfg);
+  const std::vector<peer::StepProblem> steps = peer::step_problems(model, cfg, 40);
+  REQUIRE(steps.size() >= 3);
+  for (const peer::StepProblem& sp : steps) {
+    REQUIRE(sp.plain.dim == 3);
+    for (const char* siconos : {"nsgs", "nsn"}) {
+      const peer::PeerSolution n = peer::solve(sp.plain, siconos, 1e-12, 100000);
+      INFO("step " << sp.step << ", Siconos " << siconos << ": error " << n.error << " in " << n.iterations);
+      REQUIRE(n.info == 0);
+      REQUIRE(n.R.norm() > 0);  // a problem with contact forces, not the trivial one
+      for (ContactMethod method : {ContactMethod::Bipotential, ContactMethod::Newton}) {
+        const ContactSolution s = make_contact_solver(tight(method))->solve(from_plain(sp.plain), {}, {});
+        INFO(contact_method_name(method) << ": error " << peer::error(sp.plain, s.Rbar) << " in " << s.iterations);
+        CHECK(s.converged);
+        CHECK(peer::error(sp.plain, s.Rbar) <= 1e-9);
+        CHECK((s.Rbar - n.R).norm() <= 1e-8 * (1 + n.R.norm()));
+      }
+    }
+  }
+}
