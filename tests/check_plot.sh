@@ -3,7 +3,7 @@
 #  1. it exits 0 on RESULT_DIR (and on each further result directory given, e.g. B2) and
 #     writes into RESULT_DIR/plots/ only;
 #  2. every expected figure (profiles, deformed, force, history_<W> for each watched point W
-#     of history.csv) exists as a PNG (200 dpi, 5 to 7 in wide, not blank) and as an SVG;
+#     of history.csv; a 3D run: beta_map instead of deformed) exists as a PNG (200 dpi, 5 to 7 in wide, not blank) and as an SVG;
 #  3. it exits non-zero with a message on what is not a result directory (an empty
 #     directory, a file, no argument).
 # Usage: check_plot.sh RESULT_DIR tools/plot [MORE_RESULT_DIRS...]
@@ -25,7 +25,10 @@ run = sys.argv[1]
 with open(os.path.join(run, "history.csv"), newline="") as f:
     header = next(csv.reader(f))
 watched = [k[: -len(" Radh_n [N]")] for k in header if k.endswith(" Radh_n [N]")]
-names = ["profiles", "deformed", "force"] + ["history_" + w for w in watched]
+import glob
+profiles = sorted(glob.glob(os.path.join(run, "interface_t*.csv")))
+solid = bool(profiles) and "z [mm]" in open(profiles[0]).readline()  # 3D: beta over the surface, no deformed figure
+names = ["profiles", "beta_map" if solid else "deformed", "force"] + ["history_" + w for w in watched]
 bad = 0
 def fail(msg):
     global bad

@@ -3,15 +3,19 @@
 ParaView reads) and checks them:
   - results.pvd and interface.pvd list the same times, a frame at t = 0 among them;
   - the bodies: no NaN, no interface field on bulk nodes, stress and strain full symmetric
-    tensors with sigma_zz = nu (sigma_xx + sigma_yy) and eps_zz = 0 in plane strain;
-  - the interface: beta, u, Rbar equal the interface CSV at the output times, p = r / a, and
-    the global vector r_xyz has the length of the local r.
+    tensors with sigma_zz = nu (sigma_xx + sigma_yy) and eps_zz = 0 in plane strain (2D), or
+    hexahedra only and sigma = lambda tr(eps) I + 2 G eps with E (3D: a fourth argument);
+  - the interface: 2D a chain of lines, 3D a surface of quads; beta, u, Rbar equal the
+    interface CSV at the output times, p = r / a, and the global vector r_xyz has the length of
+    the local r.
 Exit 77 (skipped) when python3-vtk9 is not installed."""
 import csv
 import math
 import os
 import sys
 import xml.etree.ElementTree as ET
+
+import numpy as np
 
 try:
     import vtk
@@ -21,6 +25,7 @@ except ImportError:
     sys.exit(77)
 
 run, nu = sys.argv[1], float(sys.argv[2]) if len(sys.argv) > 2 else 0.333
+E = float(sys.argv[3]) if len(sys.argv) > 3 else 6.9e4
 
 
 def collection(name):
@@ -51,13 +56,24 @@ for (t, vtu), (_, vtp) in zip(bodies, interface):
     for name in ("strain", "stress"):
         T = cd[name].reshape(-1, 3, 3)
         assert abs(T - T.transpose(0, 2, 1)).max() <= 1e-12 * max(1.0, abs(T).max()), f"{vtu}: {name} not symmetric"
-    S, E = cd["stress"].reshape(-1, 3, 3), cd["strain"].reshape(-1, 3, 3)
-    assert abs(S[:, 2, 2] - nu * (S[:, 0, 0] + S[:, 1, 1])).max() <= 1e-9 * max(1.0, abs(S).max()), "sigma_zz"
-    assert abs(E[:, 2, 2]).max() == 0.0, "eps_zz of plane strain"
+    S, Eps = cd["stress"].reshape(-1, 3, 3), cd["strain"].reshape(-1, 3, 3)
+    solid = all(grid.GetCellType(c) == 12 for c in range(grid.GetNumberOfCells()))  # VTK_HEXAHEDRON
+    if solid:
+        lam, G = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
+        trace = Eps[:, 0, 0] + Eps[:, 1, 1] + Eps[:, 2, 2]
+        hooke = lam * trace[:, None, None] * np.eye(3) + 2 * G * Eps
+        assert abs(S - hooke).max() <= 1e-9 * max(1.0, abs(S).max()), f"{vtu}: stress is not Hooke's of the strain"
+    else:
+        assert abs(S[:, 2, 2] - nu * (S[:, 0, 0] + S[:, 1, 1])).max() <= 1e-9 * max(1.0, abs(S).max()), "sigma_zz"
+        assert abs(Eps[:, 2, 2]).max() == 0.0, "eps_zz of plane strain"
 
     poly = read(vtk.vtkXMLPolyDataReader(), vtp)
     ip = arrays(poly.GetPointData())
-    assert poly.GetNumberOfLines() == poly.GetNumberOfPoints() - 1, f"{vtp}: the interface is not a chain of lines"
+    if solid:
+        assert poly.GetNumberOfPolys() > 0 and poly.GetNumberOfLines() == 0, f"{vtp}: the interface is not a surface"
+        assert all(poly.GetCell(c).GetNumberOfPoints() == 4 for c in range(poly.GetNumberOfCells())), f"{vtp}: not quads"
+    else:
+        assert poly.GetNumberOfLines() == poly.GetNumberOfPoints() - 1, f"{vtp}: the interface is not a chain of lines"
     p, r, a = ip["p"], ip["r"], ip["tributary"]
     assert abs(p - r / a[:, None]).max() <= 1e-12 * max(1.0, abs(p).max()), f"{vtp}: p != r / a"
     lr, lg = (r ** 2).sum(axis=1) ** 0.5, (ip["r_xyz"] ** 2).sum(axis=1) ** 0.5
@@ -67,9 +83,10 @@ for (t, vtu), (_, vtp) in zip(bodies, interface):
         with open(path) as f:
             rows = list(csv.DictReader(f))
         assert len(rows) == poly.GetNumberOfPoints(), (len(rows), poly.GetNumberOfPoints())
+        n, t = (2, "t1") if solid else (1, "t")  # local components: tangents first, the normal last
         for i, row in enumerate(rows):
-            for mine, col in ((ip["beta"][i], "beta"), (ip["u"][i][1], "u_n [mm]"), (ip["u"][i][0], "u_t [mm]"),
-                              (ip["Rbar"][i][1], "Rbar_n [N]"), (ip["Rbar"][i][0], "Rbar_t [N]")):
+            for mine, col in ((ip["beta"][i], "beta"), (ip["u"][i][n], "u_n [mm]"), (ip["u"][i][0], f"u_{t} [mm]"),
+                              (ip["Rbar"][i][n], "Rbar_n [N]"), (ip["Rbar"][i][0], f"Rbar_{t} [N]")):
                 assert abs(mine - float(row[col])) <= 1e-9 * max(1.0, abs(mine)), (vtp, i, col, mine, row[col])
         checked += 1
 assert checked >= 1, "no frame at an output time"
