@@ -296,3 +296,24 @@ TEST_CASE("3D Hertz: a rigid sphere pressed into an elastic block, the gap from 
   }
   CHECK(l2[1] < 0.6 * l2[0]);  // the profile converges: measured 0.143 -> 0.057 for h 0.5 -> 0.33
 }
+
+TEST_CASE("a rigid sphere anywhere: each contact pair's gap is its distance to the sphere, its normal radial", "[solid]") {
+  // The sphere above an interior point of the top face, off every plane of symmetry.
+  const Config cfg = test::config_from_text(R"(
+mesh = { size = [4.0, 2.0, 3.0]; nx = 4; ny = 2; nz = 3; element = "H8"; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "top"; circle = { centre = [1.3, 7.5, 2.2]; radius = 5.0; side = "outside"; }; Cn = 1000.0; Ct = 1000.0; w = 0.0; mu = 0.3; beta0 = 0.0; };
+loads = ( { node_set = "bottom"; type = "displacement"; component = "y"; value = 0.1; } );
+time = { T = 1.0; steps = 1; };
+integrator = { method = "contact-only"; };
+)");
+  const Model model = test::make_model(cfg);
+  const Eigen::Vector3d c(1.3, 7.5, 2.2);
+  REQUIRE(model.contact_nodes() == 5 * 4);
+  for (const ContactPair& p : model.interface().pairs) {
+    const Eigen::Vector3d x = model.mesh().nodes[p.node];
+    CHECK(p.g0 == Approx((x - c).norm() - 5.0).margin(1e-12));
+    CHECK((p.frame.n - (x - c).normalized()).norm() <= 1e-12);
+    CHECK((p.frame.t1.cross(p.frame.t2) - p.frame.n).norm() <= 1e-12);
+  }
+}
