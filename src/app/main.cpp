@@ -42,6 +42,11 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   const rccm::Config cfg = rccm::load_config(config_file, fixed);
   if (directory.empty()) directory = cfg.output.directory + "-sweep";
   std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, directory);
+  for (const rccm::SweepCase& c : cases)  // PETSc is not thread-safe: its cases one at a time
+    if (jobs > 1 && (c.config.solver.linear.kind == rccm::LinearSolver::Mumps ||
+                     c.config.solver.linear.kind == rccm::LinearSolver::CgGamg))
+      throw rccm::InputError("sweep: case " + c.name + " solves the body with PETSc (solver.linear), which runs one "
+                             "case at a time: give -j 1");
   std::filesystem::create_directories(directory);
   std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << directory << "\n";
   rccm::run_sweep(cases, jobs, force);

@@ -136,7 +136,8 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
   std::vector<std::string> header = {"case"};
   for (const SweepAxis& a : axes) header.push_back(a.path);
   header.insert(header.end(), {"status", "peak force [N]", "t at peak [s]"});
-  for (double t : times) header.push_back("debonded at t=" + csv_number(t) + " [mm]");
+  const bool solid = cases.front().config.mesh.dim() == 3;  // a debonded area, mm2
+  for (double t : times) header.push_back("debonded at t=" + csv_number(t) + (solid ? " [mm2]" : " [mm]"));
   header.insert(header.end(), {"damage dissipation [N mm]", "friction dissipation [N mm]",
                                "energy imbalance (relative)", "steps", "wall [s]", "message"});
 

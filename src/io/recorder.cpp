@@ -84,7 +84,7 @@ void Recorder::start(BetaOde& ode) {
   energy_->resume(resume_->state, body_, resume_->energy);
   const RunResult& p = resume_->progress;
   result_.snapshots = p.snapshots;
-  result_.steps = writer_->resumed_steps();
+  if (writer_) result_.steps = writer_->resumed_steps();  // processes other than 0 write nothing (la/parallel.hpp)
   result_.peak_force = p.peak_force;
   result_.peak_time = p.peak_time;
   earlier_ = p.integrator;

@@ -37,13 +37,16 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "mesh: " << r.nodes << " nodes, " << r.cells << " cells, " << r.dofs << " DOFs, " << r.contact_nodes
       << " contact nodes\n"
       << "body's solves: " << r.linear_solver << "\n";
-  out << "bodies (" << hypothesis_name(cfg.hypothesis()) << "):";
+  const bool solid = cfg.mesh.dim() == 3;
+  out << "bodies (" << (solid ? "3D" : hypothesis_name(cfg.hypothesis())) << "):";
   for (const std::string& b : r.bodies) out << " " << b;
   out << "\ninterfaces:";
   for (std::size_t k = 0; k < cfg.interfaces.size() && k < r.pairs_per_interface.size(); ++k) {
     const InterfaceParams& p = cfg.interfaces[k];
     out << (k ? ";" : "") << " " << p.path << " '" << p.boundary << "' against "
-        << (p.facing == Facing::Line ? "a rigid line" : p.facing == Facing::Circle ? "a rigid circle" : "'" + p.opposite + "'")
+        << (p.facing == Facing::Line ? (solid ? "a rigid plane" : "a rigid line")
+            : p.facing == Facing::Circle ? (solid ? "a rigid sphere" : "a rigid circle")
+                                         : "'" + p.opposite + "'")
         << " (" << r.pairs_per_interface[k] << " pairs)";
   }
   out << "\nintegrator: " << method_name(cfg.integrator.method);
@@ -88,7 +91,10 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   const EnergyTerms& e = r.energy;
   const bool rate_independent = cfg.integrator.method == Method::RateIndependent;
   out << "\nEnergy balance at T (docs/MODEL.md s3), N mm "
-      << (cfg.hypothesis() == Hypothesis::Axisymmetric ? "(the whole body of revolution)" : "per mm of thickness") << "\n"
+      << (cfg.hypothesis() == Hypothesis::Axisymmetric ? "(the whole body of revolution)"
+          : cfg.mesh.dim() == 3                        ? "(the whole body)"
+                                                       : "per mm of thickness")
+      << "\n"
       << "  external work                  " << fmt("%.8e", e.external_work) << "\n"
       << "  strain energy                  " << fmt("%.8e", e.strain_energy) << "\n"
       << "  interface free energy change   " << fmt("%.8e", e.free_energy_change) << "\n"
@@ -129,7 +135,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                      {"sweeps_max", s.sweeps_max},
                      {"cpu_seconds", s.cpu_seconds}});
   const json report = {{"config", cfg.file},
-                       {"hypothesis", hypothesis_name(cfg.hypothesis())},
+                       {"hypothesis", cfg.mesh.dim() == 3 ? "3D" : hypothesis_name(cfg.hypothesis())},
                        {"rccm_version", RCCM_VERSION_STRING},
                        {"integrator", method_name(cfg.integrator.method)},
                        {"alpha", alpha},

@@ -18,7 +18,8 @@ int rank();
 int size();
 
 /// Ends the program with `status`: with several processes, all of them (MPI_Abort), so that
-/// none waits forever for a process that stopped on an error.
+/// none waits forever for a process that stopped on an error; a process other than 0 first
+/// gives process 0 up to a minute to write its files and abort everyone itself.
 [[noreturn]] void abort(int status);
 
 }  // namespace rccm::parallel
