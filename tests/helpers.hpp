@@ -37,6 +37,21 @@ inline Config config_from_text(const std::string& text, const std::vector<std::s
   return load_config(file.path, overrides);
 }
 
+/// config/corner-peel.cfg in small: a plate of n x 1 x n H8 cells of 1 mm bonded to a rigid
+/// base by its face y = 0, lifted by one corner at 0.03 mm/s for 5 s, by sweeps.
+inline Config corner_peel(int n, const std::vector<std::string>& overrides = {}) {
+  const std::string side = std::to_string(n);
+  return config_from_text("mesh = { size = [" + side + ".0, 1.0, " + side + ".0]; nx = " + side + "; ny = 1; nz = " +
+                              side + R"(; element = "H8"; };
+material = { E = 6.9e4; nu = 0.333; };
+interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
+loads = ( { node_set = "top_left_back"; type = "displacement"; component = "y"; value = 0.15; } );
+time = { T = 5.0; };
+solver = { active_set = false; };
+)",
+                          overrides);
+}
+
 /// The model of a config on its built-in rectangle mesh, as `rccm run` builds it.
 inline Model make_model(const Config& cfg) { return Model(cfg, make_mesh(cfg)); }
 

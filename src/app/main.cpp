@@ -17,6 +17,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
+#include <map>
 #include <thread>
 #include <unistd.h>
 
@@ -103,8 +104,12 @@ int main(int argc, char** argv) {
   bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
       ->check(CLI::PositiveNumber);
   std::string bench_linear = "auto";
+  const std::map<std::string, rccm::LinearSolver> linear_solvers{{"auto", rccm::LinearSolver::Auto},
+                                                                  {"cholmod", rccm::LinearSolver::Cholmod},
+                                                                  {"mumps", rccm::LinearSolver::Mumps},
+                                                                  {"cg-gamg", rccm::LinearSolver::CgGamg}};
   bench->add_option("--linear", bench_linear, "the body's solver of the scale cases (solver.linear; default auto)")
-      ->check(CLI::IsMember({"auto", "cholmod", "mumps", "cg-gamg"}));
+      ->check(CLI::IsMember(linear_solvers));
   bool verbose = false, force = false;
   run->add_flag("--quiet,-q", quiet, "no progress line");
   for (CLI::App* sub : {run, sweep_app})
@@ -148,9 +153,7 @@ int main(int argc, char** argv) {
       }
       if (scale_levels > 0) {
         std::vector<rccm::BenchRow> scale;
-        const std::vector<std::string> linear_names{"auto", "cholmod", "mumps", "cg-gamg"};  // LinearSolver's order
-        const auto linear = static_cast<rccm::LinearSolver>(
-            std::find(linear_names.begin(), linear_names.end(), bench_linear) - linear_names.begin());
+        const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
         if (linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
           throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
         out << "\n# refined B1, t in [0, " << scale_time << "] s\n";

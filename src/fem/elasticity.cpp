@@ -95,47 +95,39 @@ Eigen::VectorXd cell_displacement(const Mesh& mesh, const std::vector<int>& cell
   return ue;
 }
 
-/// K of a 3D mesh of H8 cells: 2 x 2 x 2 Gauss points.
-SparseMatrix assemble_stiffness_3d(const Mesh& mesh, const std::vector<Material>& body_materials) {
-  const double g = 1.0 / std::sqrt(3.0);
-  std::vector<Eigen::Triplet<double>> trip;
-  Eigen::MatrixXd B;
-  for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
-    const auto& cell = mesh.cells[c];
-    RCCM_VERIFY(cell.size() == 8, "3D cells are H8");
-    const Eigen::Matrix<double, 6, 6>& D = body_materials[mesh.cell_body[c]].D3();
-    Eigen::MatrixXd Ke = Eigen::MatrixXd::Zero(24, 24);
+/// The stiffness of cell c, K_e = int B^T D B dV: plane or axisymmetric cells at their
+/// quadrature points, H8 cells at 2 x 2 x 2 Gauss points (weight 1).
+Eigen::MatrixXd cell_stiffness(const Mesh& mesh, std::size_t c, const Material& material) {
+  const auto& cell = mesh.cells[c];
+  const int k = static_cast<int>(cell.size());
+  Eigen::MatrixXd B, Ke = Eigen::MatrixXd::Zero(mesh.dim * k, mesh.dim * k);
+  if (mesh.dim == 3) {
+    RCCM_VERIFY(k == 8, "3D cells are H8");
+    const double g = 1.0 / std::sqrt(3.0);
     for (int q = 0; q < 8; ++q) {
       const Eigen::Vector3d r(q & 1 ? g : -g, q & 2 ? g : -g, q & 4 ? g : -g);
       const double dV = strain_matrix_3d(mesh, cell, r, B);
-      Ke += B.transpose() * D * B * dV;  // K_e = int B^T D B dV
+      Ke += B.transpose() * material.D3() * B * dV;
     }
-    for (int a = 0; a < 24; ++a)
-      for (int b = 0; b < 24; ++b) trip.emplace_back(mesh.dof(cell[a / 3], a % 3), mesh.dof(cell[b / 3], b % 3), Ke(a, b));
+    return Ke;
   }
-  SparseMatrix K(mesh.num_dofs(), mesh.num_dofs());
-  K.setFromTriplets(trip.begin(), trip.end());
-  return K;
+  for (const Eigen::Vector3d& q : quadrature(k, mesh.axisymmetric)) {
+    const double dV = strain_matrix(mesh, cell, q[0], q[1], B);
+    Ke += B.transpose() * material.D() * B * dV * q[2];
+  }
+  return Ke;
 }
 
 }  // namespace
 
 SparseMatrix assemble_stiffness(const Mesh& mesh, const std::vector<Material>& body_materials) {
-  if (mesh.dim == 3) return assemble_stiffness_3d(mesh, body_materials);
+  const int d = mesh.dim;
   std::vector<Eigen::Triplet<double>> trip;
-  Eigen::MatrixXd B;
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
     const auto& cell = mesh.cells[c];
-    const Eigen::Matrix4d& D = body_materials[mesh.cell_body[c]].D();
-    const int k = static_cast<int>(cell.size());
-    Eigen::MatrixXd Ke = Eigen::MatrixXd::Zero(2 * k, 2 * k);
-    for (const Eigen::Vector3d& q : quadrature(k, mesh.axisymmetric)) {
-      const double dV = strain_matrix(mesh, cell, q[0], q[1], B);
-      Ke += B.transpose() * D * B * dV * q[2];  // K_e = int B^T D B dV
-    }
-    for (int a = 0; a < 2 * k; ++a)
-      for (int b = 0; b < 2 * k; ++b)
-        trip.emplace_back(mesh.dof(cell[a / 2], a % 2), mesh.dof(cell[b / 2], b % 2), Ke(a, b));
+    const Eigen::MatrixXd Ke = cell_stiffness(mesh, c, body_materials[mesh.cell_body[c]]);
+    for (int a = 0; a < Ke.rows(); ++a)
+      for (int b = 0; b < Ke.cols(); ++b) trip.emplace_back(mesh.dof(cell[a / d], a % d), mesh.dof(cell[b / d], b % d), Ke(a, b));
   }
   const int n = mesh.num_dofs();
   SparseMatrix K(n, n);

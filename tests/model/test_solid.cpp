@@ -157,15 +157,7 @@ loads = ( { node_set = "top_left"; type = "displacement"; component = "y"; value
 
 // The corner lifted 0.03 mm/s for 5 s, by sweeps (the 3D exact step costs more here: README).
 TEST_CASE("a square plate peeled by one corner: symmetric about the diagonal, a curved front, beta never rises", "[solid]") {
-  Config cfg = test::config_from_text(R"(
-mesh = { size = [8.0, 1.0, 8.0]; nx = 8; ny = 1; nz = 8; element = "H8"; };
-material = { E = 6.9e4; nu = 0.333; };
-interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
-loads = ( { node_set = "top_left_back"; type = "displacement"; component = "y"; value = 0.15; } );
-time = { T = 5.0; };
-solver = { active_set = false; };
-output = { times = [2.5]; };
-)");
+  const Config cfg = test::corner_peel(8, {"output.times=[2.5]"});
   Eigen::VectorXd previous;
   bool rose = false;
   RunOptions options;

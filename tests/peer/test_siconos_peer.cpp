@@ -113,14 +113,7 @@ TEST_CASE("Siconos fc3d on the corner peel's condensed 3D problems: its NSGS and
   // A plate lifted by one corner (6 x 1 x 6 H8, 49 contact pairs), as config/corner-peel.cfg: its
   // commit problems every 40 accepted steps, springs and previous slip folded into the plain
   // form (Siconos knows neither); some pairs bonded, some debonded, sliding in 2D directions.
-  const Config cfg = test::config_from_text(R"(
-mesh = { size = [6.0, 1.0, 6.0]; nx = 6; ny = 1; nz = 6; element = "H8"; };
-material = { E = 6.9e4; nu = 0.333; };
-interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
-loads = ( { node_set = "top_left_back"; type = "displacement"; component = "y"; value = 0.15; } );
-time = { T = 5.0; };
-solver = { active_set = false; };
-)");
+  const Config cfg = test::corner_peel(6);
   const Model model = test::make_model(cfg);
   const std::vector<peer::StepProblem> steps = peer::step_problems(model, cfg, 40);
   REQUIRE(steps.size() >= 3);
