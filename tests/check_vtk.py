@@ -4,8 +4,10 @@ ParaView reads) and checks them:
   - results.pvd and interface.pvd list the same times, a frame at t = 0 among them;
   - the bodies: no NaN, no interface field on bulk nodes, stress and strain full symmetric
     tensors with sigma_zz = nu (sigma_xx + sigma_yy) and eps_zz = 0 in plane strain (2D), or
-    hexahedra only and sigma = lambda tr(eps) I + 2 G eps with E (3D: a fourth argument);
-  - the interface: 2D a chain of lines, 3D a surface of quads; beta, u, Rbar equal the
+    tetrahedra and hexahedra only and sigma = lambda tr(eps) I + 2 G eps with E (3D: a fourth
+    argument);
+  - the interface: 2D a chain of lines, 3D a surface of triangles and quads whose areas sum
+    to the nodes' tributary areas; beta, u, Rbar equal the
     interface CSV at the output times, p = r / a, and the global vector r_xyz has the length of
     the local r.
 Exit 77 (skipped) when python3-vtk9 is not installed."""
@@ -57,7 +59,7 @@ for (t, vtu), (_, vtp) in zip(bodies, interface):
         T = cd[name].reshape(-1, 3, 3)
         assert abs(T - T.transpose(0, 2, 1)).max() <= 1e-12 * max(1.0, abs(T).max()), f"{vtu}: {name} not symmetric"
     S, Eps = cd["stress"].reshape(-1, 3, 3), cd["strain"].reshape(-1, 3, 3)
-    solid = all(grid.GetCellType(c) == 12 for c in range(grid.GetNumberOfCells()))  # VTK_HEXAHEDRON
+    solid = all(grid.GetCellType(c) in (10, 12) for c in range(grid.GetNumberOfCells()))  # VTK_TETRA, VTK_HEXAHEDRON
     if solid:
         lam, G = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
         trace = Eps[:, 0, 0] + Eps[:, 1, 1] + Eps[:, 2, 2]
@@ -71,7 +73,14 @@ for (t, vtu), (_, vtp) in zip(bodies, interface):
     ip = arrays(poly.GetPointData())
     if solid:
         assert poly.GetNumberOfPolys() > 0 and poly.GetNumberOfLines() == 0, f"{vtp}: the interface is not a surface"
-        assert all(poly.GetCell(c).GetNumberOfPoints() == 4 for c in range(poly.GetNumberOfCells())), f"{vtp}: not quads"
+        area = 0.0
+        for c in range(poly.GetNumberOfCells()):
+            ids = poly.GetCell(c).GetPointIds()
+            x = np.array([poly.GetPoint(ids.GetId(k)) for k in range(ids.GetNumberOfIds())])
+            assert len(x) in (3, 4), f"{vtp}: a facet of {len(x)} points"
+            for k in range(1, len(x) - 1):  # a fan of triangles (the quads of a flat face)
+                area += 0.5 * np.linalg.norm(np.cross(x[k] - x[0], x[k + 1] - x[0]))
+        assert abs(area - ip["tributary"].sum()) <= 1e-9 * area, f"{vtp}: facets' area {area} != tributary areas"
     else:
         assert poly.GetNumberOfLines() == poly.GetNumberOfPoints() - 1, f"{vtp}: the interface is not a chain of lines"
     p, r, a = ip["p"], ip["r"], ip["tributary"]

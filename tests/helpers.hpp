@@ -7,6 +7,7 @@
 #include "rccm/model/model.hpp"
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <map>
 #include <sstream>
@@ -29,6 +30,15 @@ inline std::string write_temp_config(const std::string& text) {
   return name;
 }
 
+/// Writes `text` to the file `name` in the build tree's tests/tmp (a fixture made by a test:
+/// gmsh picks the reader by the extension) and returns its path.
+inline std::string write_temp_file(const std::string& name, const std::string& text) {
+  std::filesystem::create_directories(RCCM_TEST_TMP);
+  const std::string path = std::string(RCCM_TEST_TMP) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
 inline Config config_from_text(const std::string& text, const std::vector<std::string>& overrides = {}) {
   struct Removed {  // also when load_config throws (the bad-config tests)
     std::string path;
@@ -38,11 +48,13 @@ inline Config config_from_text(const std::string& text, const std::vector<std::s
 }
 
 /// config/corner-peel.cfg in small: a plate of n x 1 x n H8 cells of 1 mm bonded to a rigid
-/// base by its face y = 0, lifted by one corner at 0.03 mm/s for 5 s, by sweeps.
-inline Config corner_peel(int n, const std::vector<std::string>& overrides = {}) {
+/// base by its face y = 0, lifted by one corner at 0.03 mm/s for 5 s, by sweeps; `mesh` (a
+/// mesh section) replaces the built-in box.
+inline Config corner_peel(int n, const std::vector<std::string>& overrides = {}, std::string mesh = "") {
   const std::string side = std::to_string(n);
-  return config_from_text("mesh = { size = [" + side + ".0, 1.0, " + side + ".0]; nx = " + side + "; ny = 1; nz = " +
-                              side + R"(; element = "H8"; };
+  if (mesh.empty())
+    mesh = "mesh = { size = [" + side + ".0, 1.0, " + side + ".0]; nx = " + side + "; ny = 1; nz = " + side + "; element = \"H8\"; };";
+  return config_from_text(mesh + R"(
 material = { E = 6.9e4; nu = 0.333; };
 interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
 loads = ( { node_set = "top_left_back"; type = "displacement"; component = "y"; value = 0.15; } );

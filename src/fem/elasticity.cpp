@@ -48,27 +48,32 @@ double strain_matrix(const Mesh& mesh, const std::vector<int>& cell, double xi, 
   return 2 * M_PI * r * det;
 }
 
-/// H8: strain-displacement matrix B (6 x 24: xx, yy, zz, yz, xz, xy) at r = (xi, eta, zeta)
-/// of the reference cube [-1, 1]^3, and det J.
+/// 3D: strain-displacement matrix B (6 x 3k: xx, yy, zz, yz, xz, xy) at r = (xi, eta, zeta)
+/// of a cell, and det J. T4 (k = 4): r are volume coordinates of the reference tetrahedron
+/// (B constant); H8 (k = 8): the reference cube [-1, 1]^3.
 double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vector3d& r, Eigen::MatrixXd& B) {
   static const double corner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                       {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
-  Eigen::Matrix<double, 3, 8> dN;
-  Eigen::Matrix<double, 8, 3> X;
-  for (int a = 0; a < 8; ++a) {
-    const double* c = corner[a];
-    const Eigen::Vector3d f(1 + c[0] * r[0], 1 + c[1] * r[1], 1 + c[2] * r[2]);  // N_a = f0 f1 f2 / 8
-    dN(0, a) = 0.125 * c[0] * f[1] * f[2];
-    dN(1, a) = 0.125 * c[1] * f[0] * f[2];
-    dN(2, a) = 0.125 * c[2] * f[0] * f[1];
-    X.row(a) = mesh.nodes[cell[a]].transpose();
+  const int k = static_cast<int>(cell.size());
+  Eigen::MatrixXd dN(3, k), X(k, 3);
+  for (int a = 0; a < k; ++a) X.row(a) = mesh.nodes[cell[a]].transpose();
+  if (k == 4) {  // N = 1 - xi - eta - zeta, xi, eta, zeta
+    dN << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
+  } else {
+    for (int a = 0; a < 8; ++a) {
+      const double* c = corner[a];
+      const Eigen::Vector3d f(1 + c[0] * r[0], 1 + c[1] * r[1], 1 + c[2] * r[2]);  // N_a = f0 f1 f2 / 8
+      dN(0, a) = 0.125 * c[0] * f[1] * f[2];
+      dN(1, a) = 0.125 * c[1] * f[0] * f[2];
+      dN(2, a) = 0.125 * c[2] * f[0] * f[1];
+    }
   }
   const Eigen::Matrix3d J = dN * X;
   const double det = J.determinant();
-  RCCM_VERIFY(det > 0, "H8 cell with non-positive Jacobian (inverted or degenerate)");
-  const Eigen::Matrix<double, 3, 8> d = J.inverse() * dN;  // d/dx, d/dy, d/dz
-  B.setZero(6, 24);
-  for (int a = 0; a < 8; ++a) {
+  RCCM_VERIFY(det > 0, "3D cell with non-positive Jacobian (inverted or degenerate)");
+  const Eigen::MatrixXd d = J.inverse() * dN;  // d/dx, d/dy, d/dz
+  B.setZero(6, 3 * k);
+  for (int a = 0; a < k; ++a) {
     B(0, 3 * a) = d(0, a);
     B(1, 3 * a + 1) = d(1, a);
     B(2, 3 * a + 2) = d(2, a);
@@ -78,6 +83,19 @@ double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Ei
   }
   return det;
 }
+
+/// Quadrature points (xi, eta, zeta, weight) of a 3D cell: T4 its centroid (volume det J / 6),
+/// H8 2 x 2 x 2 Gauss points.
+std::vector<Eigen::Vector4d> quadrature_3d(int k) {
+  if (k == 4) return {{0.25, 0.25, 0.25, 1.0 / 6}};
+  const double g = 1.0 / std::sqrt(3.0);
+  std::vector<Eigen::Vector4d> q;
+  for (int i = 0; i < 8; ++i) q.emplace_back(i & 1 ? g : -g, i & 2 ? g : -g, i & 4 ? g : -g, 1.0);
+  return q;
+}
+
+/// The point where a cell's strain and stress are reported: its centre.
+Eigen::Vector3d centre_3d(int k) { return k == 4 ? Eigen::Vector3d::Constant(0.25) : Eigen::Vector3d::Zero(); }
 
 /// Quadrature points (xi, eta, weight) of a cell: T3 1 point (3 axisymmetric: the hoop
 /// term varies), Q4 2 x 2 Gauss.
@@ -95,19 +113,16 @@ Eigen::VectorXd cell_displacement(const Mesh& mesh, const std::vector<int>& cell
   return ue;
 }
 
-/// The stiffness of cell c, K_e = int B^T D B dV: plane or axisymmetric cells at their
-/// quadrature points, H8 cells at 2 x 2 x 2 Gauss points (weight 1).
+/// The stiffness of cell c, K_e = int B^T D B dV at the cell's quadrature points.
 Eigen::MatrixXd cell_stiffness(const Mesh& mesh, std::size_t c, const Material& material) {
   const auto& cell = mesh.cells[c];
   const int k = static_cast<int>(cell.size());
   Eigen::MatrixXd B, Ke = Eigen::MatrixXd::Zero(mesh.dim * k, mesh.dim * k);
   if (mesh.dim == 3) {
-    RCCM_VERIFY(k == 8, "3D cells are H8");
-    const double g = 1.0 / std::sqrt(3.0);
-    for (int q = 0; q < 8; ++q) {
-      const Eigen::Vector3d r(q & 1 ? g : -g, q & 2 ? g : -g, q & 4 ? g : -g);
-      const double dV = strain_matrix_3d(mesh, cell, r, B);
-      Ke += B.transpose() * material.D3() * B * dV;
+    RCCM_VERIFY(k == 4 || k == 8, "3D cells are T4 or H8");
+    for (const Eigen::Vector4d& q : quadrature_3d(k)) {
+      const double dV = strain_matrix_3d(mesh, cell, q.head<3>(), B);
+      Ke += B.transpose() * material.D3() * B * dV * q[3];
     }
     return Ke;
   }
@@ -141,7 +156,7 @@ CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_mater
   Eigen::MatrixXd B;
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
     if (mesh.dim == 3) {  // at the cell centre
-      strain_matrix_3d(mesh, mesh.cells[c], Eigen::Vector3d::Zero(), B);
+      strain_matrix_3d(mesh, mesh.cells[c], centre_3d(static_cast<int>(mesh.cells[c].size())), B);
       const Voigt3 eps = B * cell_displacement(mesh, mesh.cells[c], u);
       f.strain.col(c) = eps;
       f.stress.col(c) = body_materials[mesh.cell_body[c]].D3() * eps;

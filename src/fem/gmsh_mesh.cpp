@@ -3,9 +3,11 @@
 #include "rccm/base/errors.hpp"
 #include "rccm/base/suggest.hpp"
 
+#include <Eigen/Geometry>
 #include <gmsh.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -49,7 +51,21 @@ class GmshSession {
   std::lock_guard<std::mutex> lock_;
 };
 
-const char* group_kind(int dim) { return dim == 0 ? "point" : dim == 1 ? "curve" : "surface"; }
+const char* group_kind(int dim) { return dim == 0 ? "point" : dim == 1 ? "curve" : dim == 2 ? "surface" : "volume"; }
+
+/// "Physical Point", "Physical Curve", ... as a .geo file writes it.
+std::string physical(int dim) {
+  std::string k = group_kind(dim);
+  k[0] = static_cast<char>(std::toupper(k[0]));
+  return "Physical " + k;
+}
+
+/// 3 when the open model has a Physical Volume (a solid), 2 otherwise.
+int top_dimension() {
+  gmsh::vectorpair volumes;
+  gmsh::model::getPhysicalGroups(volumes, 3);
+  return volumes.empty() ? 2 : 3;
+}
 
 /// The name of a physical group; an unnamed group is "<kind> <tag>".
 std::string group_name(int dim, int tag) {
@@ -66,6 +82,7 @@ class Reader {
     open();
     for (int k = 0; k < p_.refine; ++k) gmsh::model::mesh::refine();
     m_.source = p_.file;
+    dim_ = m_.dim = top_dimension();
     read_bodies();
     read_node_sets();
     find_facets();
@@ -85,8 +102,8 @@ class Reader {
       for (const auto& [name, value] : p_.parameters) gmsh::onelab::setNumber(name, {value});
       gmsh::open(p_.file);
       std::vector<int> types;
-      gmsh::model::mesh::getElementTypes(types, 2);
-      if (types.empty()) gmsh::model::mesh::generate(2);
+      gmsh::model::mesh::getElementTypes(types, top_dimension());
+      if (types.empty()) gmsh::model::mesh::generate(top_dimension());
     } catch (const std::string& e) {
       fail(GmshSession::last_error(e));
     } catch (const std::exception& e) {
@@ -112,20 +129,22 @@ class Reader {
     if (it != index_.end()) return it->second;
     std::vector<double> x, param;
     gmsh::model::mesh::getNode(tag, x, param);
-    if (std::abs(x[2]) > 1e-12 * (1 + std::abs(x[0]) + std::abs(x[1]))) {
+    if (dim_ == 2 && std::abs(x[2]) > 1e-12 * (1 + std::abs(x[0]) + std::abs(x[1]))) {
       std::ostringstream m;
       m << "node " << tag << " lies at z = " << x[2] << ": a 2D mesh lies in the plane z = 0";
       fail(m.str());
     }
-    m_.nodes.emplace_back(x[0], x[1], 0.0);
+    m_.nodes.emplace_back(x[0], x[1], dim_ == 3 ? x[2] : 0.0);
     return index_[tag] = m_.num_nodes() - 1;
   }
 
+  /// Each Physical Surface (2D) or Physical Volume (3D) is a body.
   void read_bodies() {
+    const std::string kind = physical(dim_);
     gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups, 2);
+    gmsh::model::getPhysicalGroups(groups, dim_);
     if (groups.empty()) fail("no Physical Surface: name each body, e.g. Physical Surface(\"arm\") = {1};");
-    std::map<int, std::string> owner;  // surface entity -> its body
+    std::map<int, std::string> owner;  // entity -> its body
     for (const auto& [dim, tag] : groups) {
       const std::string name = group_name(dim, tag);
       const int body = static_cast<int>(m_.body_names.size());
@@ -135,12 +154,12 @@ class Reader {
       std::set<int> nodes_of_body;
       for (int e : entities) {
         if (owner.count(e))
-          fail("surface " + std::to_string(e) + " is in two Physical Surfaces, '" + owner[e] + "' and '" + name +
-               "': a cell belongs to one body");
+          fail(std::string(group_kind(dim)) + " " + std::to_string(e) + " is in two " + kind + "s, '" + owner[e] + "' and '" +
+               name + "': a cell belongs to one body");
         owner[e] = name;
         std::vector<int> types;
         std::vector<std::vector<std::size_t>> cells, nodes;
-        gmsh::model::mesh::getElements(types, cells, nodes, 2, e);
+        gmsh::model::mesh::getElements(types, cells, nodes, dim, e);
         for (std::size_t t = 0; t < types.size(); ++t) {
           const int k = element_nodes(types[t], name);
           for (std::size_t c = 0; c < cells[t].size(); ++c) {
@@ -153,57 +172,76 @@ class Reader {
           }
         }
       }
-      if (nodes_of_body.empty()) fail("Physical Surface '" + name + "' has no cells (is the surface meshed?)");
+      if (nodes_of_body.empty()) fail(kind + " '" + name + "' has no cells (is it meshed?)");
       m_.node_sets[name].assign(nodes_of_body.begin(), nodes_of_body.end());
     }
-    gmsh::vectorpair surfaces;
-    gmsh::model::getEntities(surfaces, 2);
-    for (const auto& [dim, tag] : surfaces) {
+    gmsh::vectorpair entities;
+    gmsh::model::getEntities(entities, dim_);
+    for (const auto& [dim, tag] : entities) {
       std::vector<int> types;
       gmsh::model::mesh::getElementTypes(types, dim, tag);
       if (!types.empty() && !owner.count(tag))
-        fail("surface " + std::to_string(tag) + " is meshed but in no Physical Surface: add it to a body, or its "
-             "cells would be left out");
+        fail(std::string(group_kind(dim)) + " " + std::to_string(tag) + " is meshed but in no " + kind +
+             ": add it to a body, or its cells would be left out");
     }
   }
 
-  /// Nodes per cell of a gmsh element type: linear triangles and quadrangles only.
+  /// Nodes per cell of a gmsh element type: linear triangles and quadrangles (2D),
+  /// tetrahedra and hexahedra (3D).
   int element_nodes(int type, const std::string& group) const {
-    if (type == 2) return 3;
-    if (type == 3) return 4;
+    if (dim_ == 2 && (type == 2 || type == 3)) return type == 2 ? 3 : 4;
+    if (dim_ == 3 && (type == 4 || type == 5)) return type == 4 ? 4 : 8;
     std::string name;
     int dim = 0, order = 0, count = 0, primary = 0;
     std::vector<double> local;
     gmsh::model::mesh::getElementProperties(type, name, dim, order, count, local, primary);
-    fail("Physical Surface '" + group + "' has " + name + " cells: rccm reads linear triangles (T3) and quadrangles (Q4)" +
+    fail(physical(dim_) + " '" + group + "' has " + name + " cells: rccm reads " +
+         (dim_ == 2 ? "linear triangles (T3) and quadrangles (Q4)" : "linear tetrahedra (T4) and hexahedra (H8)") +
          (order > 1 ? "; mesh with Mesh.ElementOrder = 1" : ""));
   }
 
-  /// Counter-clockwise node order (gmsh orients a cell by its surface's normal).
+  /// 2D: counter-clockwise node order (gmsh orients a cell by its surface's normal); 3D: a
+  /// positive volume (a mirrored cell's node order reversed face by face).
   void orient(std::vector<int>& cell, const std::string& group) {
-    double area2 = 0;
-    for (std::size_t a = 0; a < cell.size(); ++a) {
-      const Eigen::Vector3d &p = m_.nodes[cell[a]], &q = m_.nodes[cell[(a + 1) % cell.size()]];
-      area2 += p.x() * q.y() - q.x() * p.y();
-    }
-    if (area2 < 0) std::reverse(cell.begin() + 1, cell.end());
-    if (area2 == 0) {
+    const double volume = signed_measure(cell);
+    if (volume < 0 && dim_ == 2) std::reverse(cell.begin() + 1, cell.end());
+    if (volume < 0 && cell.size() == 4 && dim_ == 3) std::swap(cell[1], cell[2]);
+    if (volume < 0 && cell.size() == 8) std::swap(cell[1], cell[3]), std::swap(cell[5], cell[7]);
+    if (volume == 0 || signed_measure(cell) <= 0) {
       const Eigen::Vector3d& x = m_.nodes[cell[0]];
       std::ostringstream m;
-      m << "Physical Surface '" << group << "' has a cell of zero area at (" << x.x() << ", " << x.y() << ")";
+      m << physical(dim_) << " '" << group << "' has a cell of zero " << (dim_ == 2 ? "area" : "volume") << " at (" << x.x()
+        << ", " << x.y() << (dim_ == 3 ? ", " + std::to_string(x.z()) : std::string()) << ")";
       fail(m.str());
     }
   }
 
+  /// Twice the signed area of a 2D cell; 3D: the triple product of the edges from node 0 to
+  /// nodes 1, 3 (H8) or 1, 2 (T4) and 4 (H8) or 3 (T4), positive for a right-handed cell.
+  double signed_measure(const std::vector<int>& cell) const {
+    const auto& x = m_.nodes;
+    if (dim_ == 2) {
+      double area2 = 0;
+      for (std::size_t a = 0; a < cell.size(); ++a) {
+        const Eigen::Vector3d &p = x[cell[a]], &q = x[cell[(a + 1) % cell.size()]];
+        area2 += p.x() * q.y() - q.x() * p.y();
+      }
+      return area2;
+    }
+    const bool hex = cell.size() == 8;
+    const Eigen::Vector3d o = x[cell[0]];
+    return (x[cell[1]] - o).cross(x[cell[hex ? 3 : 2]] - o).dot(x[cell[hex ? 4 : 3]] - o);
+  }
+
+  /// Physical groups below the bodies' dimension name node sets.
   void read_node_sets() {
-    for (int dim : {1, 0}) {
+    for (int dim = dim_ - 1; dim >= 0; --dim) {
+      const std::string kind = physical(dim);
       gmsh::vectorpair groups;
       gmsh::model::getPhysicalGroups(groups, dim);
       for (const auto& [d, tag] : groups) {
         const std::string name = group_name(d, tag);
-        if (m_.node_sets.count(name))
-          fail("Physical " + std::string(dim == 1 ? "Curve" : "Point") + " '" + name +
-               "' has the name of another physical group: give each its own name");
+        if (m_.node_sets.count(name)) fail(kind + " '" + name + "' has the name of another physical group: give each its own name");
         std::vector<int> entities;
         gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
         std::vector<int> set;
@@ -212,44 +250,70 @@ class Reader {
           std::vector<std::vector<std::size_t>> elements, nodes;
           gmsh::model::mesh::getElements(types, elements, nodes, d, e);
           for (std::size_t t = 0; t < types.size(); ++t) {
-            if (types[t] != 1 && types[t] != 15)
-              fail("Physical Curve '" + name + "' has elements of higher order: mesh with Mesh.ElementOrder = 1");
+            if (!(types[t] == 15 || types[t] == 1 || types[t] == 2 || types[t] == 3))  // point, line, triangle, quad
+              fail(kind + " '" + name + "' has elements of higher order: mesh with Mesh.ElementOrder = 1");
             for (std::size_t tag_of_node : nodes[t]) {
               const auto it = index_.find(tag_of_node);
               if (it == index_.end())
-                fail("Physical " + std::string(dim == 1 ? "Curve" : "Point") + " '" + name +
-                     "' has a node on no cell of a body: it must lie on the boundary of a Physical Surface");
+                fail(kind + " '" + name + "' has a node on no cell of a body: it must lie on the boundary of a " + physical(dim_));
               if (std::find(set.begin(), set.end(), it->second) == set.end()) set.push_back(it->second);
             }
           }
         }
-        if (set.empty()) fail("Physical " + std::string(dim == 1 ? "Curve" : "Point") + " '" + name + "' has no nodes");
+        if (set.empty()) fail(kind + " '" + name + "' has no nodes");
         m_.node_sets[name] = set;
       }
     }
   }
 
-  /// The boundary facets: the cell edges of one cell only.
+  /// The boundary facets: the cell edges (2D) or faces (3D) of one cell only, as the cell
+  /// orders them (2D: counter-clockwise; 3D: counter-clockwise seen from outside).
   void find_facets() {
-    std::map<std::pair<int, int>, std::pair<int, std::vector<int>>> edges;  // sorted nodes -> count, oriented edge
+    std::map<std::vector<int>, std::pair<int, std::vector<int>>> seen;  // sorted nodes -> count, oriented facet
     for (const auto& cell : m_.cells)
-      for (std::size_t a = 0; a < cell.size(); ++a) {
-        const int i = cell[a], j = cell[(a + 1) % cell.size()];
-        auto& e = edges[{std::min(i, j), std::max(i, j)}];
+      for (const std::vector<int>& local : facets_of(cell.size())) {
+        std::vector<int> f;
+        for (int a : local) f.push_back(cell[a]);
+        std::vector<int> key = f;
+        std::sort(key.begin(), key.end());
+        auto& e = seen[key];
         ++e.first;
-        e.second = {i, j};
+        e.second = f;
       }
-    for (const auto& [key, e] : edges)
+    for (const auto& [key, e] : seen)
       if (e.first == 1) m_.facets.push_back(e.second);
+  }
+
+  /// The facets of a cell of `k` nodes by local index, ordered counter-clockwise seen from
+  /// outside a positively oriented cell.
+  std::vector<std::vector<int>> facets_of(std::size_t k) const {
+    if (dim_ == 2 && k == 3) return {{0, 1}, {1, 2}, {2, 0}};
+    if (dim_ == 2) return {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    if (k == 4) return {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    return {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   }
 
   const MeshParams& p_;
   const std::string where_;
   Mesh m_;
+  int dim_ = 2;  // of the bodies: 2 (Physical Surfaces) or 3 (Physical Volumes)
   std::map<std::size_t, int> index_;
 };
 
 }  // namespace
+
+int read_gmsh_dimension(const MeshParams& p) {
+  GmshSession session;
+  try {
+    for (const auto& [name, value] : p.parameters) gmsh::onelab::setNumber(name, {value});
+    gmsh::open(p.file);
+    return top_dimension();
+  } catch (const std::string& e) {
+    throw InputError(p.file + ": " + GmshSession::last_error(e));
+  } catch (const std::exception& e) {
+    throw InputError(p.file + ": " + GmshSession::last_error(e.what()));
+  }
+}
 
 Mesh read_gmsh(const MeshParams& p, const std::string& where) {
   GmshSession session;

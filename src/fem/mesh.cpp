@@ -71,27 +71,32 @@ std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<int>& set) cons
 
 std::vector<BoundaryFace> Mesh::boundary_faces(const std::vector<int>& set) const {
   RCCM_VERIFY(dim == 3, "boundary faces (3D)");
-  // int N_a dA on the bilinear quad x(xi, eta), by 2 x 2 Gauss points: dA = |x_xi x x_eta|.
-  const double g = 1.0 / std::sqrt(3.0);
-  const double xi[4] = {-1, 1, 1, -1}, eta[4] = {-1, -1, 1, 1};
   std::vector<BoundaryFace> out;
   for (const auto& f : facets_within(set)) {
-    RCCM_VERIFY(f.size() == 4, "a 3D boundary facet is a quad");
+    RCCM_VERIFY(f.size() == 3 || f.size() == 4, "a 3D boundary facet is a triangle or a quad");
     BoundaryFace face;
     face.nodes = f;
-    face.weights.assign(4, 0.0);
+    face.weights.assign(f.size(), 0.0);
     Eigen::Vector3d normal = Eigen::Vector3d::Zero();
-    for (int q = 0; q < 4; ++q) {
-      const double s = g * xi[q], t = g * eta[q];
-      Eigen::Vector3d dxi = Eigen::Vector3d::Zero(), deta = Eigen::Vector3d::Zero();
-      for (int a = 0; a < 4; ++a) {
-        dxi += 0.25 * xi[a] * (1 + eta[a] * t) * nodes[f[a]];
-        deta += 0.25 * eta[a] * (1 + xi[a] * s) * nodes[f[a]];
+    if (f.size() == 3) {  // a flat triangle: int N_a dA = A / 3
+      normal = (nodes[f[1]] - nodes[f[0]]).cross(nodes[f[2]] - nodes[f[0]]);
+      face.area = 0.5 * normal.norm();
+      face.weights.assign(3, face.area / 3);
+    } else {  // the bilinear quad x(xi, eta) by 2 x 2 Gauss points: dA = |x_xi x x_eta|
+      const double g = 1.0 / std::sqrt(3.0);
+      const double xi[4] = {-1, 1, 1, -1}, eta[4] = {-1, -1, 1, 1};
+      for (int q = 0; q < 4; ++q) {
+        const double s = g * xi[q], t = g * eta[q];
+        Eigen::Vector3d dxi = Eigen::Vector3d::Zero(), deta = Eigen::Vector3d::Zero();
+        for (int a = 0; a < 4; ++a) {
+          dxi += 0.25 * xi[a] * (1 + eta[a] * t) * nodes[f[a]];
+          deta += 0.25 * eta[a] * (1 + xi[a] * s) * nodes[f[a]];
+        }
+        const Eigen::Vector3d n = dxi.cross(deta);
+        for (int a = 0; a < 4; ++a) face.weights[a] += 0.25 * (1 + xi[a] * s) * (1 + eta[a] * t) * n.norm();
+        face.area += n.norm();
+        normal += n;
       }
-      const Eigen::Vector3d n = dxi.cross(deta);
-      for (int a = 0; a < 4; ++a) face.weights[a] += 0.25 * (1 + xi[a] * s) * (1 + eta[a] * t) * n.norm();
-      face.area += n.norm();
-      normal += n;
     }
     face.outward = normal.normalized();
     out.push_back(face);
@@ -118,7 +123,7 @@ std::vector<double> Mesh::tributary_measures(const std::vector<int>& set) const 
   std::vector<double> a(nodes.size(), 0.0);
   if (dim == 3)
     for (const BoundaryFace& f : boundary_faces(set))
-      for (int k = 0; k < 4; ++k) a[f.nodes[k]] += f.weights[k];
+      for (std::size_t k = 0; k < f.nodes.size(); ++k) a[f.nodes[k]] += f.weights[k];
   else
     for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += e.weight_a, a[e.b] += e.weight_b;
   std::vector<double> out;

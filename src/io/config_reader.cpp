@@ -7,6 +7,7 @@
 #include "rccm/base/suggest.hpp"
 #include "rccm/io/csv.hpp"
 #include "rccm/la/parallel.hpp"
+#include "rccm/fem/gmsh_mesh.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
 #include "rccm/time/arkode_integrator.hpp"
 
@@ -396,6 +397,14 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
       const Setting& g = r.group(m, "parameters");
       for (int i = 0; i < g.getLength(); ++i) p.parameters[g[i].getName()] = r.number(g[i]);
     }
+    try {
+      p.dimension = read_gmsh_dimension(p);
+    } catch (const InputError& e) {
+      r.fail(m["file"], e.what());
+    }
+    if (p.dimension == 3)
+      for (const char* key : {"rotation", "origin", "node_sets"})
+        if (m.exists(key)) r.fail(m[key], "is 2D only for now: place a 3D mesh and name its node sets in the gmsh file (Physical Surface)");
   } else {
     r.only(m, {"origin", "size", "nx", "ny", "nz", "element", "rotation", "node_sets"});
     // [x, y]: the rectangle; [x, y, z]: the box (3D).
@@ -409,6 +418,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
     r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
     r.check(p.ny >= 1, m["ny"], "must be >= 1", p.ny);
     if (box) {
+      p.dimension = 3;
       p.nz = r.integer(m, "nz", 0, true);
       r.check(p.nz >= 1, m["nz"], "must be >= 1", p.nz);
       p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 2));
@@ -614,7 +624,7 @@ std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double 
     } else {
       if (!l.exists("component")) r.fail(l, "missing setting 'component'");
       p.component = r.choice(l, "component", {"x", "y", "z"}, 0);
-      if (p.component == 2 && dim == 2) r.fail(l["component"], "\"z\" is a component of a 3D mesh (a box)");
+      if (p.component == 2 && dim == 2) r.fail(l["component"], "\"z\" is a component of a 3D mesh (a box, or a gmsh file with a Physical Volume)");
     }
     if (dim == 3 && (p.kind == LoadKind::Traction || p.kind == LoadKind::Pressure))
       r.fail(l["type"], "tractions and pressures are 2D only for now: in 3D give a displacement or nodal forces");

@@ -25,6 +25,13 @@ void push_tensor(std::vector<double>& out, double xx, double yy, double xy, doub
   out.insert(out.end(), {xx, xy, 0.0, xy, yy, 0.0, 0.0, 0.0, zz});
 }
 
+/// VTK's cell type of a linear cell of dimension `dim` with `nodes` nodes.
+int cell_type(int dim, std::size_t nodes) {
+  if (dim == 1) return 3;                   // VTK_LINE
+  if (dim == 2) return nodes == 3 ? 5 : 9;  // VTK_TRIANGLE, VTK_QUAD
+  return nodes == 4 ? 10 : 12;              // VTK_TETRA, VTK_HEXAHEDRON
+}
+
 const std::vector<std::string> tensor_components = {"xx", "xy", "xz", "yx", "yy", "yz", "zx", "zy", "zz"};
 
 }  // namespace
@@ -39,7 +46,7 @@ void VtkWriter::write_bodies(const std::string& file, const BodyState& b) const 
   }
   vtu.points(xyz);
   std::vector<int> types;
-  for (const auto& cell : mesh.cells) types.push_back(cell.size() == 3 ? 5 : cell.size() == 4 ? 9 : 12);  // VTK_TRIANGLE, VTK_QUAD, VTK_HEXAHEDRON
+  for (const auto& cell : mesh.cells) types.push_back(cell_type(mesh.dim, cell.size()));
   vtu.cells(mesh.cells, types);
   vtu.point_data(VtkFile::floats("displacement", 3, u, {"x", "y", "z"}));
   // The out-of-plane components from each body's material (Material::complete): eps_zz = 0
@@ -83,12 +90,14 @@ void VtkWriter::write_interface(const std::string& file, const InterfaceState& s
     nodes.push_back(n);
   }
   vtp.points(xyz);
-  std::vector<std::vector<int>> facets;  // 2D: lines, 3D: quads, of the interface's facets
+  std::vector<std::vector<int>> facets;  // 2D: lines, 3D: triangles and quads, of the interface's facets
   for (const auto& f : mesh.facets_within(nodes)) {
     facets.emplace_back();
     for (int n : f) facets.back().push_back(pair_of_node[n]);
   }
-  vtp.cells(facets, std::vector<int>(facets.size(), mesh.dim == 3 ? 9 : 3));  // VTK_QUAD, VTK_LINE
+  std::vector<int> types;
+  for (const auto& f : facets) types.push_back(cell_type(mesh.dim - 1, f.size()));
+  vtp.cells(facets, types);
   // Local components: tangential first, normal last, named.
   const std::vector<std::string> local = L.dim == 2 ? std::vector<std::string>{"t", "n"}
                                                     : std::vector<std::string>{"t1", "t2", "n"};

@@ -25,14 +25,8 @@ Mesh read(const std::string& file, int refine = 0, std::map<std::string, double>
   return read_gmsh(p, "test.cfg:1: mesh.file");
 }
 
-/// A .geo file with `text` in a fresh directory.
-std::string geo(const std::string& name, const std::string& text) {
-  const fs::path dir = fs::temp_directory_path() / ("rccm_gmsh_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string path = (dir / name).string();
-  std::ofstream(path) << text;
-  return path;
-}
+/// A .geo file with `text`.
+std::string geo(const std::string& name, const std::string& text) { return test::write_temp_file(name, text); }
 
 double area(const Mesh& m, const std::vector<int>& cell) {
   double a2 = 0;

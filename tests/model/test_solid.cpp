@@ -2,6 +2,7 @@
 // B1 extruded into a slab reproduces 2D B1 on Q4 cells; a square plate peeled by one corner
 // debonds symmetrically about the diagonal along a curved front, with beta never rising.
 #include "helpers.hpp"
+#include "solid_checks.hpp"
 #include "rccm/app/simulation.hpp"
 #include "rccm/fem/box_mesh.hpp"
 #include "rccm/fem/elasticity.hpp"
@@ -30,12 +31,6 @@ MeshParams box(double lx, double ly, double lz, int nx, int ny, int nz) {
   return p;
 }
 
-MaterialParams isotropic(double E, double nu) {
-  MaterialParams p;
-  p.E = E, p.nu = nu;
-  return p;
-}
-
 // B1 (docs/BENCHMARKS.md) on 32 x 2 cells, in 2D on Q4 and as a 1 mm slab of H8 held at
 // u_z = 0 (plane strain), explicit Euler-210.
 const char* const kB1 = R"(
@@ -52,47 +47,7 @@ TEST_CASE("H8: rigid motions are free, a uniform strain is in equilibrium, the 3
   const Mesh m = make_box(box(3.0, 2.0, 1.5, 3, 2, 2));
   REQUIRE(m.dim == 3);
   CHECK(m.num_nodes() == 4 * 3 * 3);
-  const std::vector<Material> materials{Material(isotropic(1000.0, 0.3))};
-  const SparseMatrix K = assemble_stiffness(m, materials);
-  CHECK((Eigen::MatrixXd(K) - Eigen::MatrixXd(K).transpose()).norm() <= 1e-12 * Eigen::MatrixXd(K).norm());
-  // The six rigid motions: three translations, three rotations (small).
-  for (int mode = 0; mode < 6; ++mode) {
-    Eigen::VectorXd u(m.num_dofs());
-    for (int n = 0; n < m.num_nodes(); ++n) {
-      const Eigen::Vector3d x = m.nodes[n];
-      const Eigen::Vector3d v = mode < 3 ? Eigen::Vector3d(Eigen::Vector3d::Unit(mode))
-                                         : Eigen::Vector3d(Eigen::Vector3d::Unit(mode - 3).cross(x));
-      u.segment<3>(m.dof(n, 0)) = v;
-    }
-    CHECK((K * u).norm() <= 1e-10 * K.norm() * u.norm());
-  }
-  // u = G x (a uniform strain): no force at the interior nodes, the strain and the stress of
-  // Hooke's law in every cell.
-  Eigen::Matrix3d G;
-  G << 1e-3, 2e-4, -1e-4, 3e-4, -5e-4, 6e-4, 0.0, 1e-4, 2e-3;
-  Eigen::VectorXd u(m.num_dofs());
-  for (int n = 0; n < m.num_nodes(); ++n) u.segment<3>(m.dof(n, 0)) = G * m.nodes[n];
-  const Eigen::VectorXd f = K * u;
-  int interior = 0;
-  for (int n = 0; n < m.num_nodes(); ++n) {
-    const Eigen::Vector3d x = m.nodes[n];
-    if (x.x() > 0 && x.x() < 3 && x.y() > 0 && x.y() < 2 && x.z() > 0 && x.z() < 1.5) {
-      CHECK(f.segment<3>(m.dof(n, 0)).norm() <= 1e-12 * f.norm());
-      ++interior;
-    }
-  }
-  CHECK(interior == 2);
-  const CellFields c = cell_fields(m, materials, u);
-  const Eigen::Matrix3d eps = 0.5 * (G + G.transpose());
-  const double E = 1000, nu = 0.3, lambda = E * nu / ((1 + nu) * (1 - 2 * nu)), mu = E / (2 * (1 + nu));
-  const Eigen::Matrix3d sigma = lambda * eps.trace() * Eigen::Matrix3d::Identity() + 2 * mu * eps;
-  Voigt3 eps_v, sigma_v;
-  eps_v << eps(0, 0), eps(1, 1), eps(2, 2), 2 * eps(1, 2), 2 * eps(0, 2), 2 * eps(0, 1);
-  sigma_v << sigma(0, 0), sigma(1, 1), sigma(2, 2), sigma(1, 2), sigma(0, 2), sigma(0, 1);
-  for (Eigen::Index k = 0; k < c.strain.cols(); ++k) {
-    CHECK((c.strain.col(k) - eps_v).norm() <= 1e-14);
-    CHECK((c.stress.col(k) - sigma_v).norm() <= 1e-11 * sigma_v.norm());
-  }
+  CHECK(test::check_rigid_motions_and_patch(m, 1000.0, 0.3) == 2);
 }
 
 TEST_CASE("the box's faces: outward normals, areas, consistent nodal weights", "[solid]") {

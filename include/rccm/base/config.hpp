@@ -24,8 +24,8 @@ struct NodeSetDef {
 enum class ElementType { T3, Q4, H8 };
 enum class Hypothesis { PlaneStrain, PlaneStress, Axisymmetric };
 
-/// The mesh source: a gmsh file (`file` set), the built-in structured rectangle, or the
-/// built-in box of H8 cells (`nz` > 0: 3D).
+/// The mesh source: a gmsh file (`file` set; 3D when it has a Physical Volume), the built-in
+/// structured rectangle, or the built-in box of H8 cells (`nz` > 0: 3D).
 struct MeshParams {
   std::string file;                        // a .msh (MSH 2.2 or 4.1) or .geo file, relative to the config; empty: the rectangle
   int refine = 0;                          // file: uniform refinements (each splits every cell in 4)
@@ -37,7 +37,8 @@ struct MeshParams {
   double depth = 0.0;                      // box: its extent along z from z = 0, mm (size's third number)
   int nz = 0;                              // box: cells along z; 0: a 2D mesh
   ElementType element = ElementType::T3;
-  int dim() const { return nz > 0 ? 3 : 2; }
+  int dimension = 2;                       // 3: the box, or a file with Physical Volumes
+  int dim() const { return dimension; }
   double rotation = 0.0;                   // degrees, counter-clockwise about `origin`
   std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners (or the file's groups)
 };

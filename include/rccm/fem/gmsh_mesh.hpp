@@ -16,4 +16,8 @@ namespace rccm {
 /// InputError "<where>: <file>: ..." naming the physical group of a mesh problem.
 Mesh read_gmsh(const MeshParams& p, const std::string& where);
 
+/// 3 when `p.file` has a Physical Volume (a 3D mesh), 2 otherwise; reads the file without
+/// meshing it. Throws InputError "<file>: ..." when gmsh cannot read it.
+int read_gmsh_dimension(const MeshParams& p);
+
 }  // namespace rccm

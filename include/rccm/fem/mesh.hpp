@@ -29,8 +29,9 @@ struct BoundaryEdge {
   double length = 0;                  // mm
 };
 
-/// A boundary facet of a 3D node set (a quad, counter-clockwise seen from outside), with its
-/// outward unit normal, its area and the consistent weights int N_a dA of its nodes.
+/// A boundary facet of a 3D node set (a triangle or a quad, counter-clockwise seen from
+/// outside), with its outward unit normal, its area and the consistent weights int N_a dA of
+/// its nodes.
 struct BoundaryFace {
   std::vector<int> nodes;
   Eigen::Vector3d outward = Eigen::Vector3d::Zero();
@@ -42,10 +43,10 @@ struct Mesh {
   int dim = 2;
   bool axisymmetric = false;                     // a meridian section (x = r >= 0, y = z): measures carry 2 pi r
   std::vector<Eigen::Vector3d> nodes;            // mm; z = 0 in 2D
-  std::vector<std::vector<int>> cells;           // node lists, counter-clockwise in 2D
+  std::vector<std::vector<int>> cells;           // node lists: T3, Q4 counter-clockwise in 2D; T4, H8 of positive volume in 3D
   std::vector<int> cell_body;                    // body of each cell: an index in body_names
   std::vector<std::string> body_names;           // the bodies (physical surfaces of a gmsh file; "body" for the rectangle)
-  std::vector<std::vector<int>> facets;          // boundary facets (edges in 2D, quads counter-clockwise seen from outside in 3D), each of one cell only
+  std::vector<std::vector<int>> facets;          // boundary facets (edges in 2D; triangles or quads counter-clockwise seen from outside in 3D), each of one cell only
   std::map<std::string, std::vector<int>> node_sets;
   Placement placement;
   std::string source;                            // the file it was read from, for messages ("" for the rectangle)
@@ -65,7 +66,7 @@ struct Mesh {
   /// The boundary edges within `set`, with their outward normals and nodal weights (2D).
   std::vector<BoundaryEdge> boundary_edges(const std::vector<int>& set) const;
 
-  /// The boundary quads within `set`, with their outward normals and nodal weights (3D).
+  /// The boundary triangles and quads within `set`, with their outward normals and nodal weights (3D).
   std::vector<BoundaryFace> boundary_faces(const std::vector<int>& set) const;
 
   /// Unit outward normal of the boundary per node of `set`: the average of its facets' in the

@@ -1,0 +1,160 @@
+// 3D gmsh meshes (fem/gmsh_mesh with Physical Volumes): tetrahedra pass the patch test and
+// their boundary triangles carry the faces' areas; mirrored cells are turned; a block of
+// tetrahedra pressed onto a frictionless base carries the uniform uniaxial stress exactly; a
+// plate of gmsh hexahedra peels like the built-in box.
+#include "helpers.hpp"
+#include "solid_checks.hpp"
+#include "rccm/app/simulation.hpp"
+#include "rccm/fem/gmsh_mesh.hpp"
+
+#include <Eigen/Geometry>
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <map>
+
+using namespace rccm;
+
+namespace {
+
+const std::string fixtures = std::string(RCCM_SOURCE_DIR) + "/tests/meshes/";
+
+Mesh read(const std::string& file, std::map<std::string, double> parameters = {}) {
+  MeshParams p;
+  p.file = fixtures + file;
+  p.parameters = std::move(parameters);
+  return read_gmsh(p, "test.cfg:1: mesh.file");
+}
+
+double volume(const Mesh& m, const std::vector<int>& c) {
+  const auto& x = m.nodes;
+  if (c.size() == 4) return (x[c[1]] - x[c[0]]).cross(x[c[2]] - x[c[0]]).dot(x[c[3]] - x[c[0]]) / 6;
+  double v = 0;  // a hexahedron as 6 tetrahedra around its diagonal 0-6
+  for (const auto& [a, b] : {std::pair{1, 2}, {2, 3}, {3, 7}, {7, 4}, {4, 5}, {5, 1}})
+    v += (x[c[a]] - x[c[0]]).cross(x[c[b]] - x[c[0]]).dot(x[c[6]] - x[c[0]]) / 6;
+  return v;
+}
+
+}  // namespace
+
+TEST_CASE("gmsh 3D: a block of tetrahedra passes the patch test, its faces' triangles carry their areas", "[gmsh][solid]") {
+  const Mesh m = read("block_tets.geo");
+  REQUIRE(m.dim == 3);
+  REQUIRE(m.body_names == std::vector<std::string>{"block"});
+  double total = 0;
+  for (const auto& c : m.cells) {
+    REQUIRE(c.size() == 4);
+    CHECK(volume(m, c) > 0);
+    total += volume(m, c);
+  }
+  CHECK(total == Approx(3.0 * 2.0 * 1.5).epsilon(1e-12));
+  CHECK(test::check_rigid_motions_and_patch(m, 1000.0, 0.3) > 0);
+  // Every boundary facet a triangle; each face's tributary areas sum to its area, the
+  // normals point out.
+  for (const auto& f : m.facets) CHECK(f.size() == 3);
+  const std::map<std::string, std::pair<Eigen::Vector3d, double>> faces = {{"bottom", {-Eigen::Vector3d::UnitY(), 4.5}},
+                                                                          {"top", {Eigen::Vector3d::UnitY(), 4.5}},
+                                                                          {"left", {-Eigen::Vector3d::UnitX(), 3.0}},
+                                                                          {"back", {-Eigen::Vector3d::UnitZ(), 6.0}}};
+  for (const auto& [name, normal_area] : faces) {
+    INFO(name);
+    const std::vector<int>& set = m.node_set(name);
+    double area = 0;
+    for (double a : m.tributary_measures(set)) area += a;
+    CHECK(area == Approx(normal_area.second).epsilon(1e-12));
+    for (const Eigen::Vector3d& n : m.outward_normals(set)) CHECK((n - normal_area.first).norm() <= 1e-12);
+  }
+  for (const int n : m.node_set("top_left")) CHECK((m.nodes[n].x() == 0 && m.nodes[n].y() == 2));
+}
+
+TEST_CASE("gmsh 3D: mirrored hexahedra and tetrahedra are turned to a positive volume, their faces outward", "[gmsh][solid]") {
+  const Mesh m = read("mirrored.msh");
+  REQUIRE(m.body_names == std::vector<std::string>{"cube", "tet"});
+  REQUIRE(m.cells.size() == 2);
+  CHECK(volume(m, m.cells[0]) == Approx(1.0).epsilon(1e-14));
+  CHECK(volume(m, m.cells[1]) == Approx(1.0 / 6).epsilon(1e-14));
+  CHECK(m.facets.size() == 6 + 4);
+  for (int body = 0; body < 2; ++body) {
+    const std::vector<int>& set = m.node_set(m.body_names[body]);
+    Eigen::Vector3d centre = Eigen::Vector3d::Zero();
+    for (int n : set) centre += m.nodes[n] / double(set.size());
+    for (const BoundaryFace& f : m.boundary_faces(set)) {
+      Eigen::Vector3d mid = Eigen::Vector3d::Zero();
+      for (int n : f.nodes) mid += m.nodes[n] / double(f.nodes.size());
+      CHECK(f.outward.dot(mid - centre) > 0);
+    }
+  }
+  CHECK(test::check_rigid_motions_and_patch(m, 1000.0, 0.3) == 0);
+}
+
+TEST_CASE("gmsh 3D: a block of tetrahedra pressed onto a frictionless base carries the uniform uniaxial stress", "[gmsh][solid]") {
+  // Top pushed down by d, free sideways but for the two top edges that hold the exact solution
+  // u = (nu e x, -e y, nu e z), e = d / H: every contact node carries sigma = E e over its
+  // area, its slip is the Poisson expansion nu e |(x, z)|.
+  const double E = 1000, nu = 0.3, H = 2, d = 0.01, e = d / H;
+  const Config cfg = test::config_from_text("mesh = { file = \"" + fixtures + R"(block_tets.geo"; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 1000.0; Ct = 1000.0; w = 0.0; mu = 0.0; beta0 = 0.0; };
+loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = -0.01; },
+          { node_set = "top_left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "top_back"; type = "displacement"; component = "z"; value = 0.0; } );
+time = { T = 1.0; steps = 1; };
+integrator = { method = "contact-only"; };
+)");
+  const Model model = test::make_model(cfg);
+  const Snapshot s = Simulation(cfg).run().snapshots.back();
+  const Interface& I = model.interface();
+  REQUIRE(I.layout.dim == 3);
+  double force = 0;
+  for (int i = 0; i < I.size(); ++i) {
+    const Eigen::Vector3d x = model.mesh().nodes[I.pairs[i].node];
+    INFO("node at " << x.transpose());
+    CHECK(s.Rbar[3 * i + 2] / I.pairs[i].measure == Approx(E * e).epsilon(1e-9));
+    CHECK(std::hypot(s.Rbar[3 * i], s.Rbar[3 * i + 1]) <= 1e-12 * E * e);
+    CHECK(std::abs(s.u[3 * i + 2]) <= 1e-12);
+    CHECK(std::hypot(s.u[3 * i], s.u[3 * i + 1]) == Approx(nu * e * std::hypot(x.x(), x.z())).margin(1e-12));
+    force += s.Rbar[3 * i + 2];
+  }
+  CHECK(force == Approx(E * e * 3.0 * 1.5).epsilon(1e-12));
+}
+
+TEST_CASE("gmsh 3D: a plate of gmsh hexahedra peels by one corner like the built-in box", "[gmsh][solid]") {
+  // Fixed steps and tight sweeps: the pairs come in another order (another sweep order).
+  const std::vector<std::string> exact = {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12"};
+  const Config box = test::corner_peel(4, exact);
+  const Config gmsh = test::corner_peel(4, exact, "mesh = { file = \"" + fixtures + "plate_hex.geo\"; parameters = { n = 4.0; }; };");
+  const RunResult a = Simulation(box).run(), b = Simulation(gmsh).run();
+  const Model ma = test::make_model(box), mb = test::make_model(gmsh);
+  REQUIRE(mb.mesh().body_names == std::vector<std::string>{"plate"});
+  REQUIRE(ma.contact_nodes() == mb.contact_nodes());
+  REQUIRE(a.snapshots.size() == b.snapshots.size());
+  // The same contact node by its position (to 1e-9 mm), whatever gmsh's numbering.
+  const auto key = [](const Eigen::Vector3d& x) {
+    return std::array<long, 3>{std::lround(1e9 * x.x()), std::lround(1e9 * x.y()), std::lround(1e9 * x.z())};
+  };
+  std::map<std::array<long, 3>, int> pair_at;
+  for (int i = 0; i < mb.interface().size(); ++i) pair_at[key(mb.mesh().nodes[mb.interface().pairs[i].node])] = i;
+  const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
+  CHECK(sa.beta.minCoeff() < 0.5);  // the peel has begun
+  for (int i = 0; i < ma.interface().size(); ++i) {
+    const int j = pair_at.at(key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
+    CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * sa.Rbar.cwiseAbs().maxCoeff());
+  }
+}
+
+TEST_CASE("gmsh 3D: a bad volume mesh is refused, naming the file and the physical group", "[gmsh][solid]") {
+  const auto refused = [](const std::string& file, const std::string& expect) {
+    MeshParams p;
+    p.file = file;
+    INFO(file);
+    CHECK_THROWS_WITH(read_gmsh(p, "test.cfg:1: mesh.file"), Catch::Contains("test.cfg:1: mesh.file: " + file) && Catch::Contains(expect));
+  };
+  const std::string box = "SetFactory(\"OpenCASCADE\");\nBox(1) = {0, 0, 0, 1, 1, 1};\nBox(2) = {2, 0, 0, 1, 1, 1};\nMesh.MeshSizeMax = 0.5;\n";
+  refused(test::write_temp_file("solid_quadratic.geo", box + "Physical Volume(\"cube\") = {1, 2};\nMesh.ElementOrder = 2;\nMesh 3;\n"),
+          "Physical Volume 'cube' has Tetrahedron 10 cells: rccm reads linear tetrahedra (T4) and hexahedra (H8); mesh with "
+          "Mesh.ElementOrder = 1");
+  refused(test::write_temp_file("solid_left_out.geo", box + "Physical Volume(\"cube\") = {1};\n"), "volume 2 is meshed but in no Physical Volume");
+  refused(test::write_temp_file("solid_clash.geo", box + "Physical Volume(\"cube\") = {1, 2};\nPhysical Surface(\"cube\") = {1};\n"),
+          "Physical Surface 'cube' has the name of another physical group");
+}
