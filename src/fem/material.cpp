@@ -31,26 +31,34 @@ Eigen::Matrix4d isotropic_stiffness(double E, double nu) {
   return E / ((1 + nu) * (1 - 2 * nu)) * C;
 }
 
-/// An orthotropic stiffness in (xx, yy, xy, zz), its material axes 1, 2 turned by `angle`
-/// about z: C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs read at the index pairs of xx, yy, xy, zz
-/// (engineering shear strains: no factors).
-Eigen::Matrix4d rotated_stiffness(const MaterialParams& p) {
+/// An orthotropic stiffness in the global Voigt order (xx, yy, zz, yz, xz, xy), its material
+/// axes 1, 2 turned by `angle` about z: C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs (engineering
+/// shear strains: no factors).
+Eigen::Matrix<double, 6, 6> rotated_stiffness(const MaterialParams& p) {
   const Eigen::Matrix<double, 6, 6> C = compliance_in_material_axes(p).inverse();
   const double a = p.angle * M_PI / 180.0;
   Eigen::Matrix3d R;
   R << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
-  const int plane[4][2] = {{0, 0}, {1, 1}, {0, 1}, {2, 2}};
-  Eigen::Matrix4d C4;
-  for (int A = 0; A < 4; ++A)
-    for (int B = 0; B < 4; ++B) {
-      const int i = plane[A][0], j = plane[A][1], k = plane[B][0], l = plane[B][1];
+  Eigen::Matrix<double, 6, 6> turned;
+  for (int A = 0; A < 6; ++A)
+    for (int B = 0; B < 6; ++B) {
+      const int i = pair_of[A][0], j = pair_of[A][1], k = pair_of[B][0], l = pair_of[B][1];
       double c = 0;
       for (int P = 0; P < 3; ++P)
         for (int Q = 0; Q < 3; ++Q)
           for (int r = 0; r < 3; ++r)
             for (int s = 0; s < 3; ++s) c += R(i, P) * R(j, Q) * R(k, r) * R(l, s) * tensor(C, P, Q, r, s);
-      C4(A, B) = c;
+      turned(A, B) = c;
     }
+  return turned;
+}
+
+/// The plane block (xx, yy, xy, zz) of a 3D stiffness.
+Eigen::Matrix4d plane_block(const Eigen::Matrix<double, 6, 6>& C) {
+  const int plane[4] = {0, 1, 5, 2};  // xx, yy, xy, zz in the 3D Voigt order
+  Eigen::Matrix4d C4;
+  for (int A = 0; A < 4; ++A)
+    for (int B = 0; B < 4; ++B) C4(A, B) = C(plane[A], plane[B]);
   return C4;
 }
 
@@ -64,7 +72,9 @@ Eigen::Matrix<double, 6, 6> compliance_in_material_axes(const MaterialParams& p)
   S(0, 1) = S(1, 0) = -nu12 / E1;
   S(0, 2) = S(2, 0) = -nu13 / E1;
   S(1, 2) = S(2, 1) = -nu23 / E2;
-  S(3, 3) = S(4, 4) = 1 / G12;  // G23, G13: decoupled from the plane, any positive value
+  // G23, G13: decoupled from the plane (any positive value there); 3D: given, or isotropic's.
+  S(3, 3) = 1 / (p.orthotropic && p.G23 > 0 ? p.G23 : G12);
+  S(4, 4) = 1 / (p.orthotropic && p.G13 > 0 ? p.G13 : G12);
   S(5, 5) = 1 / G12;
   return S;
 }
@@ -75,9 +85,11 @@ Material::Material(const MaterialParams& p) : hypothesis_(p.hypothesis) {
     D3_.topLeftCorner<3, 3>().setConstant(lambda);
     D3_.topLeftCorner<3, 3>().diagonal().array() += 2 * G;
     D3_.bottomRightCorner<3, 3>().diagonal().setConstant(G);
+  } else {
+    D3_ = rotated_stiffness(p);
   }
   // Isotropic in closed form: B2's explicit runs amplify a last-bit change of K to 1e-7.
-  const Eigen::Matrix4d C4 = p.orthotropic ? rotated_stiffness(p) : isotropic_stiffness(p.E, p.nu);
+  const Eigen::Matrix4d C4 = p.orthotropic ? plane_block(D3_) : isotropic_stiffness(p.E, p.nu);
   S_ = C4.inverse();
   if (hypothesis_ == Hypothesis::PlaneStress) {  // sigma_zz = 0: the in-plane block of the compliance inverted
     D_.setZero();

@@ -451,13 +451,12 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
 }
 
 MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
-  if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12)");
+  if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12; 3D: G13, G23)");
   MaterialParams p;
   p.path = mat.getPath();
   p.hypothesis = static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress", "axisymmetric"}, 0));
   p.orthotropic = mat.exists("E1");
   if (dim == 3 && mat.exists("hypothesis")) r.fail(mat["hypothesis"], "a 3D body has no plane hypothesis: leave it out");
-  if (dim == 3 && p.orthotropic) r.fail(mat["E1"], "orthotropic materials are 2D only for now: give E and nu in 3D");
   if (!p.orthotropic) {
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
@@ -466,8 +465,16 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
     return p;
   }
-  r.only(mat, {"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "angle", "hypothesis"});
+  r.only(mat, {"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23", "angle", "hypothesis"});
   for (auto [name, v] : {std::pair<const char*, double*>{"E1", &p.E1}, {"E2", &p.E2}, {"E3", &p.E3}, {"G12", &p.G12}}) {
+    *v = r.number(mat, name);
+    r.check(*v > 0, mat[name], "must be > 0", *v);
+  }
+  // The out-of-plane shears: a 3D body needs them, a plane one does not use them.
+  for (auto [name, v] : {std::pair<const char*, double*>{"G13", &p.G13}, {"G23", &p.G23}}) {
+    if (dim == 2 && mat.exists(name)) r.fail(mat[name], "is the out-of-plane shear modulus of a 3D body: a plane body does not use it, leave it out");
+    if (dim == 2) continue;
+    if (!mat.exists(name)) r.fail(mat, std::string("missing setting '") + name + "': a 3D orthotropic body needs G12, G13 and G23");
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);
   }

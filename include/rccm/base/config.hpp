@@ -44,7 +44,7 @@ struct MeshParams {
 };
 
 /// Linear elasticity of one body (docs/MODEL.md s1): isotropic (E, nu) or orthotropic with
-/// material axes 1, 2 in the plane (axis 1 at `angle` from x) and 3 out of it (the hoop
+/// material axes 1, 2 in the x-y plane (axis 1 at `angle` from x) and 3 along z (the hoop
 /// direction of an axisymmetric body).
 struct MaterialParams {
   std::string path = "material";  // its section in the config, for messages
@@ -54,6 +54,7 @@ struct MaterialParams {
   double E1 = 0.0, E2 = 0.0, E3 = 0.0;        // MPa
   double nu12 = 0.0, nu13 = 0.0, nu23 = 0.0;  // nu_ij = -strain_j / strain_i under stress along i
   double G12 = 0.0;                           // in-plane shear modulus, MPa
+  double G13 = 0.0, G23 = 0.0;                // out-of-plane shear moduli, MPa (3D; 0: not given)
   double angle = 0.0;                         // degrees, from x to axis 1, counter-clockwise
   Hypothesis hypothesis = Hypothesis::PlaneStrain;
 };

@@ -27,7 +27,8 @@ class Material {
 
   Hypothesis hypothesis() const { return hypothesis_; }
 
-  /// The 3D law, sigma = D3 eps in the Voigt order of Voigt3 (isotropic bodies).
+  /// The 3D law, sigma = D3 eps in the Voigt order of Voigt3 (orthotropic: its axes turned
+  /// by the angle about z).
   const Eigen::Matrix<double, 6, 6>& D3() const { return D3_; }
 
  private:
@@ -37,7 +38,8 @@ class Material {
 };
 
 /// The compliance of `p` in its material axes (Voigt 11, 22, 33, 23, 13, 12, engineering
-/// shear), MPa^-1. The out-of-plane shears decouple from the plane and do not enter.
+/// shear), MPa^-1. The out-of-plane shears (G23, G13) decouple from the plane: a plane body
+/// does not need them (G12 stands in).
 Eigen::Matrix<double, 6, 6> compliance_in_material_axes(const MaterialParams& p);
 
 }  // namespace rccm
