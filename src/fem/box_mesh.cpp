@@ -1,5 +1,7 @@
 #include "rccm/fem/box_mesh.hpp"
 
+#include "rccm/fem/mesh_source.hpp"
+
 namespace rccm {
 
 Mesh make_box(const MeshParams& p) {
@@ -56,6 +58,7 @@ Mesh make_box(const MeshParams& p) {
           s[std::string(j == 0 ? "bottom" : "top") + (i == 0 ? "_left" : "_right") + (k == 0 ? "_back" : "_front")] = {n};
         s["all"].push_back(n);
       }
+  add_box_sets(m, p.node_sets);  // [xmin, xmax, ymin, ymax]: every z
   return m;
 }
 

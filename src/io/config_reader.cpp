@@ -423,8 +423,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
       r.check(p.nz >= 1, m["nz"], "must be >= 1", p.nz);
       p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 2));
       if (p.element != ElementType::H8) r.fail(m["element"], "a box (size with 3 numbers) is meshed with \"H8\" cells");
-      for (const char* key : {"rotation", "node_sets"})
-        if (m.exists(key)) r.fail(m[key], "is not available for a box yet (3D): use its faces and edges");
+      if (m.exists("rotation")) r.fail(m["rotation"], "is not available for a box yet (3D)");
     } else {
       if (m.exists("nz")) r.fail(m["nz"], "applies to a box: give size three numbers [x, y, z]");
       p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 0));

@@ -5,12 +5,15 @@
 #include "helpers.hpp"
 #include "solid_checks.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/fem/box_mesh.hpp"
 #include "rccm/fem/gmsh_mesh.hpp"
 
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <fstream>
+#include <iomanip>
 #include <map>
 
 using namespace rccm;
@@ -33,6 +36,39 @@ double volume(const Mesh& m, const std::vector<int>& c) {
   for (const auto& [a, b] : {std::pair{1, 2}, {2, 3}, {3, 7}, {7, 4}, {4, 5}, {5, 1}})
     v += (x[c[a]] - x[c[0]]).cross(x[c[b]] - x[c[0]]).dot(x[c[6]] - x[c[0]]) / 6;
   return v;
+}
+
+/// The corner peel's plate (n x 1 x n H8) turned by Q about the origin, as an MSH 2.2 file
+/// with its body "plate", its face "bottom" (quads) and its corner "top_left_back".
+std::string turned_plate(int n, const Eigen::Matrix3d& Q) {
+  MeshParams p;
+  p.size = {double(n), 1.0};
+  p.depth = n;
+  p.nx = n, p.ny = 1, p.nz = n;
+  p.element = ElementType::H8;
+  const Mesh box = make_box(p);
+  std::ostringstream msh;
+  msh << std::setprecision(17) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n3 1 \"plate\"\n2 2 \"bottom\"\n"
+      << "0 3 \"top_left_back\"\n$EndPhysicalNames\n$Nodes\n" << box.num_nodes() << "\n";
+  for (int k = 0; k < box.num_nodes(); ++k) {
+    const Eigen::Vector3d x = Q * box.nodes[k];
+    msh << k + 1 << " " << x.x() << " " << x.y() << " " << x.z() << "\n";
+  }
+  const auto bottom = box.facets_within(box.node_set("bottom"));
+  msh << "$EndNodes\n$Elements\n" << box.cells.size() + bottom.size() + 1 << "\n";
+  int id = 0;
+  for (const auto& c : box.cells) {
+    msh << ++id << " 5 2 1 1";
+    for (int k : c) msh << " " << k + 1;
+    msh << "\n";
+  }
+  for (const auto& f : bottom) {
+    msh << ++id << " 3 2 2 2";
+    for (int k : f) msh << " " << k + 1;
+    msh << "\n";
+  }
+  msh << ++id << " 15 2 3 3 " << box.node_set("top_left_back").front() + 1 << "\n$EndElements\n";
+  return test::write_temp_file("turned_plate.msh", msh.str());
 }
 
 }  // namespace
@@ -157,4 +193,48 @@ TEST_CASE("gmsh 3D: a bad volume mesh is refused, naming the file and the physic
   refused(test::write_temp_file("solid_left_out.geo", box + "Physical Volume(\"cube\") = {1};\n"), "volume 2 is meshed but in no Physical Volume");
   refused(test::write_temp_file("solid_clash.geo", box + "Physical Volume(\"cube\") = {1, 2};\nPhysical Surface(\"cube\") = {1};\n"),
           "Physical Surface 'cube' has the name of another physical group");
+}
+
+TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis gives the same beta, "
+          "normal reactions and slip magnitudes",
+          "[gmsh][solid]") {
+  // The corner pulled by a force (components add up; prescribed components would hold the
+  // others at 0).
+  const double F = 200;  // N: the plate's corner region debonds, the rest holds
+  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  const Eigen::Vector3d n = Q.col(1), lift = F * Q.col(1);  // the base's normal, the force on the corner
+  std::ostringstream turned;
+  turned << std::setprecision(17) << "mesh = { file = \"" << turned_plate(4, Q) << "\"; };\n"
+         << "material = { E = 6.9e4; nu = 0.333; };\n"
+         << "interface = { boundary = \"bottom\"; normal = [" << n.x() << ", " << n.y() << ", " << n.z()
+         << "]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };\n"
+         << "loads = ( { node_set = \"top_left_back\"; type = \"force\"; component = \"x\"; value = " << lift.x() << "; },\n"
+         << "          { node_set = \"top_left_back\"; type = \"force\"; component = \"y\"; value = " << lift.y() << "; },\n"
+         << "          { node_set = \"top_left_back\"; type = \"force\"; component = \"z\"; value = " << lift.z() << "; } );\n"
+         << "time = { T = 5.0; steps = 50; };\nintegrator = { method = \"euler\"; };\nsolver = { active_set = false; tolerance = 1e-12; };\n";
+  const Config a_cfg = test::corner_peel(4, {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12",
+                                             "loads=({node_set=\"top_left_back\"; type=\"force\"; component=\"y\"; value=" +
+                                                 std::to_string(F) + ";})"});
+  const Config b_cfg = test::config_from_text(turned.str());
+  const RunResult a = Simulation(a_cfg).run(), b = Simulation(b_cfg).run();
+  const Model ma = test::make_model(a_cfg), mb = test::make_model(b_cfg);
+  REQUIRE(ma.contact_nodes() == mb.contact_nodes());
+  const auto key = [](const Eigen::Vector3d& x) {
+    return std::array<long, 3>{std::lround(1e6 * x.x()), std::lround(1e6 * x.y()), std::lround(1e6 * x.z())};
+  };
+  std::map<std::array<long, 3>, int> pair_at;  // the turned plate's pairs by their place before turning
+  for (int j = 0; j < mb.interface().size(); ++j) pair_at[key(Q.transpose() * mb.mesh().nodes[mb.interface().pairs[j].node])] = j;
+  const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
+  REQUIRE(sa.beta.minCoeff() < 0.5);
+  REQUIRE(sa.beta.maxCoeff() > 0.5);
+  const double R = sa.Rbar.cwiseAbs().maxCoeff(), u = sa.u.cwiseAbs().maxCoeff();
+  for (int i = 0; i < ma.interface().size(); ++i) {
+    const int j = pair_at.at(key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    CHECK((mb.interface().pairs[j].frame.n - n).norm() <= 1e-14);
+    CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
+    CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * R);
+    CHECK(std::abs(std::hypot(sa.Rbar[3 * i], sa.Rbar[3 * i + 1]) - std::hypot(sb.Rbar[3 * j], sb.Rbar[3 * j + 1])) <= 1e-8 * R);
+    CHECK(std::abs(sa.u[3 * i + 2] - sb.u[3 * j + 2]) <= 1e-8 * u);
+    CHECK(std::abs(std::hypot(sa.u[3 * i], sa.u[3 * i + 1]) - std::hypot(sb.u[3 * j], sb.u[3 * j + 1])) <= 1e-8 * u);
+  }
 }
