@@ -40,16 +40,25 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
       }
     } else if (p.kind == LoadKind::Force) {
       for (int dof : lc.dofs) lc.force[dof] = 1.0;  // axisymmetric: on the whole ring
-    } else {  // consistent nodal forces of a unit traction along x or y, or a unit pressure along -outward
-      const std::vector<BoundaryEdge> edges = mesh.boundary_edges(*set);
-      if (edges.empty()) throw InputError(where + "node set '" + p.node_set + "' has no boundary edge to carry a " +
-                                          (p.kind == LoadKind::Pressure ? "pressure" : "traction"));
-      for (const BoundaryEdge& e : edges)
-        for (int x = 0; x < mesh.dim; ++x) {
-          const double t = p.kind == LoadKind::Pressure ? -e.outward[x] : double(x == p.component);
-          lc.force[mesh.dof(e.a, x)] += t * e.weight_a;
-          lc.force[mesh.dof(e.b, x)] += t * e.weight_b;
-        }
+    } else {  // consistent nodal forces of a unit traction along a component, or a unit pressure along -outward
+      const auto unit_load = [&](const Eigen::Vector3d& outward, int x) {
+        return p.kind == LoadKind::Pressure ? -outward[x] : double(x == p.component);
+      };
+      std::size_t facets = 0;
+      if (mesh.dim == 3) {  // the set's boundary triangles and quads
+        for (const BoundaryFace& f : mesh.boundary_faces(*set))
+          for (std::size_t a = 0; a < f.nodes.size(); ++a, ++facets)
+            for (int x = 0; x < 3; ++x) lc.force[mesh.dof(f.nodes[a], x)] += unit_load(f.outward, x) * f.weights[a];
+      } else {
+        for (const BoundaryEdge& e : mesh.boundary_edges(*set))
+          for (int x = 0; x < 2; ++x, ++facets) {
+            lc.force[mesh.dof(e.a, x)] += unit_load(e.outward, x) * e.weight_a;
+            lc.force[mesh.dof(e.b, x)] += unit_load(e.outward, x) * e.weight_b;
+          }
+      }
+      if (facets == 0)
+        throw InputError(where + "node set '" + p.node_set + "' has no boundary " + (mesh.dim == 3 ? "face" : "edge") +
+                         " to carry a " + (p.kind == LoadKind::Pressure ? "pressure" : "traction"));
     }
     out.push_back(std::move(lc));
   }

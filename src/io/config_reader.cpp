@@ -632,8 +632,6 @@ std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double 
       p.component = r.choice(l, "component", {"x", "y", "z"}, 0);
       if (p.component == 2 && dim == 2) r.fail(l["component"], "\"z\" is a component of a 3D mesh (a box, or a gmsh file with a Physical Volume)");
     }
-    if (dim == 3 && (p.kind == LoadKind::Traction || p.kind == LoadKind::Pressure))
-      r.fail(l["type"], "tractions and pressures are 2D only for now: in 3D give a displacement or nodal forces");
     p.amplitude = read_amplitude(r, l, T);
     out.push_back(p);
   }

@@ -123,20 +123,20 @@ TEST_CASE("gmsh 3D: mirrored hexahedra and tetrahedra are turned to a positive v
   CHECK(test::check_rigid_motions_and_patch(m, 1000.0, 0.3) == 0);
 }
 
-TEST_CASE("gmsh 3D: a block of tetrahedra pressed onto a frictionless base carries the uniform uniaxial stress", "[gmsh][solid]") {
-  // Top pushed down by d, free sideways but for the two top edges that hold the exact solution
-  // u = (nu e x, -e y, nu e z), e = d / H: every contact node carries sigma = E e over its
-  // area, its slip is the Poisson expansion nu e |(x, z)|.
-  const double E = 1000, nu = 0.3, H = 2, d = 0.01, e = d / H;
-  const Config cfg = test::config_from_text("mesh = { file = \"" + fixtures + R"(block_tets.geo"; };
+namespace {
+
+/// A block of Lx x 2 x Lz mm (E = 1000 MPa, nu = 0.3) on a frictionless, unbonded base,
+/// loaded from its top by `loads` so that it carries the uniaxial stress sigma_yy = -sigma:
+/// every contact node's pressure is sigma, its slip the Poisson expansion nu sigma / E |(x, z)|
+/// about the corner held in x and z, the resultant sigma Lx Lz.
+void check_uniform_compression(const std::string& mesh, const std::string& loads, double sigma, double Lx, double Lz) {
+  const double E = 1000, nu = 0.3;
+  const Config cfg = test::config_from_text(mesh + R"(
 material = { E = 1000.0; nu = 0.3; };
 interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 1000.0; Ct = 1000.0; w = 0.0; mu = 0.0; beta0 = 0.0; };
-loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = -0.01; },
-          { node_set = "top_left"; type = "displacement"; component = "x"; value = 0.0; },
-          { node_set = "top_back"; type = "displacement"; component = "z"; value = 0.0; } );
 time = { T = 1.0; steps = 1; };
 integrator = { method = "contact-only"; };
-)");
+loads = ( )" + loads + " );\n");
   const Model model = test::make_model(cfg);
   const Snapshot s = Simulation(cfg).run().snapshots.back();
   const Interface& I = model.interface();
@@ -145,13 +145,43 @@ integrator = { method = "contact-only"; };
   for (int i = 0; i < I.size(); ++i) {
     const Eigen::Vector3d x = model.mesh().nodes[I.pairs[i].node];
     INFO("node at " << x.transpose());
-    CHECK(s.Rbar[3 * i + 2] / I.pairs[i].measure == Approx(E * e).epsilon(1e-9));
-    CHECK(std::hypot(s.Rbar[3 * i], s.Rbar[3 * i + 1]) <= 1e-12 * E * e);
+    CHECK(s.Rbar[3 * i + 2] / I.pairs[i].measure == Approx(sigma).epsilon(1e-9));
+    CHECK(std::hypot(s.Rbar[3 * i], s.Rbar[3 * i + 1]) <= 1e-12 * sigma);
     CHECK(std::abs(s.u[3 * i + 2]) <= 1e-12);
-    CHECK(std::hypot(s.u[3 * i], s.u[3 * i + 1]) == Approx(nu * e * std::hypot(x.x(), x.z())).margin(1e-12));
+    CHECK(std::hypot(s.u[3 * i], s.u[3 * i + 1]) == Approx(nu * sigma / E * std::hypot(x.x(), x.z())).margin(1e-12));
     force += s.Rbar[3 * i + 2];
   }
-  CHECK(force == Approx(E * e * 3.0 * 1.5).epsilon(1e-12));
+  CHECK(force == Approx(sigma * Lx * Lz).epsilon(1e-10));
+}
+
+const std::string tets = "mesh = { file = \"" + fixtures + "block_tets.geo\"; };\n";
+// The two top edges through the corner (0, 2, 0) hold the exact solution's u_x = 0, u_z = 0.
+const std::string held = R"(,
+  { node_set = "top_left"; type = "displacement"; component = "x"; value = 0.0; },
+  { node_set = "top_back"; type = "displacement"; component = "z"; value = 0.0; })";
+
+}  // namespace
+
+TEST_CASE("gmsh 3D: a block of tetrahedra pressed onto a frictionless base carries the uniform uniaxial stress", "[gmsh][solid]") {
+  // The top pushed down by d = 0.01 mm: sigma = E d / H.
+  check_uniform_compression(tets, R"({ node_set = "top"; type = "displacement"; component = "y"; value = -0.01; })" + held,
+                            1000 * 0.01 / 2, 3.0, 1.5);
+}
+
+TEST_CASE("3D pressures and tractions: a pressure or a downward traction on the top face of tetrahedra or "
+          "hexahedra is carried as the uniform uniaxial stress",
+          "[gmsh][solid]") {
+  const double p = 7.5;  // MPa
+  for (const char* load : {R"({ node_set = "top"; type = "pressure"; value = 7.5; })",
+                           R"({ node_set = "top"; type = "traction"; component = "y"; value = -7.5; })"}) {
+    INFO(load);
+    check_uniform_compression(tets, load + held, p, 3.0, 1.5);
+    // The box of H8: its faces x = 0 and z = 0 hold u_x = 0 and u_z = 0.
+    check_uniform_compression(R"(mesh = { size = [3.0, 2.0, 1.5]; nx = 3; ny = 2; nz = 2; element = "H8"; };)", std::string(load) + R"(,
+  { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; },
+  { node_set = "back"; type = "displacement"; component = "z"; value = 0.0; })",
+                              p, 3.0, 1.5);
+  }
 }
 
 TEST_CASE("gmsh 3D: a plate of gmsh hexahedra peels by one corner like the built-in box", "[gmsh][solid]") {
