@@ -145,9 +145,11 @@ class PairBuilder {
   void match_opposite() {
     const std::vector<int>& other = node_set(p_.opposite, ".opposite");
     double tolerance = p_.tolerance;
-    if (tolerance == 0) {
+    if (tolerance == 0) {  // 1e-3 of the shortest edge of the boundary's facets
       double shortest = std::numeric_limits<double>::infinity();
-      for (const BoundaryEdge& e : mesh_.boundary_edges(nodes_)) shortest = std::min(shortest, e.length);
+      for (const std::vector<int>& f : mesh_.facets_within(nodes_))
+        for (std::size_t a = 0; a < f.size(); ++a)
+          shortest = std::min(shortest, (mesh_.nodes[f[a]] - mesh_.nodes[f[(a + 1) % f.size()]]).norm());
       tolerance = 1e-3 * shortest;
     }
     std::vector<int> taken(mesh_.num_nodes(), -1);
@@ -163,8 +165,8 @@ class PairBuilder {
       }
       if (best == nodes_[k])
         fail(".opposite", "node " + point(x) + " belongs to both '" + p_.boundary + "' and '" + p_.opposite +
-                              "': the bodies share their nodes there; give each body its own curve along the interface "
-                              "(its own points), meshed alike");
+                              "': the bodies share their nodes there; give each body its own curve (3D: surface) along the "
+                              "interface (its own points), meshed alike");
       if (d_best > worst) worst = d_best, worst_k = static_cast<int>(k);
       if (taken[best] >= 0 && d_best <= tolerance)
         fail(".opposite", "nodes " + point(x) + " and " + point(mesh_.nodes[nodes_[taken[best]]]) + " of '" + p_.boundary +
@@ -176,7 +178,7 @@ class PairBuilder {
       std::ostringstream m;
       m << "the meshes of '" << p_.boundary << "' and '" << p_.opposite << "' do not match: node "
         << point(mesh_.nodes[nodes_[worst_k]]) << " of '" << p_.boundary << "' is " << worst << " mm from the nearest node of '"
-        << p_.opposite << "' (tolerance " << tolerance << " mm); mesh both curves alike (Transfinite Curve), or raise "
+        << p_.opposite << "' (tolerance " << tolerance << " mm); mesh both curves (surfaces) alike (Transfinite Curve, Transfinite Surface), or raise "
         << p_.path << ".tolerance";
       fail(".opposite", m.str());
     }

@@ -531,8 +531,6 @@ InterfaceParams read_interface(const Reader& r, const Setting& in, int dim) {
     r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
     p.normal = {p.normal[0] / len, p.normal[1] / len, p.normal[2] / len};
   }
-  if (dim == 3 && in.exists("opposite"))
-    r.fail(in["opposite"], "is 2D only for now: a 3D interface faces a rigid plane ('normal') or sphere ('circle')");
   if (in.exists("circle")) {
     const Setting& c = r.group(in, "circle");
     r.only(c, {"centre", "radius", "side"});

@@ -38,37 +38,64 @@ double volume(const Mesh& m, const std::vector<int>& c) {
   return v;
 }
 
-/// The corner peel's plate (n x 1 x n H8) turned by Q about the origin, as an MSH 2.2 file
-/// with its body "plate", its face "bottom" (quads) and its corner "top_left_back".
-std::string turned_plate(int n, const Eigen::Matrix3d& Q) {
+/// A body of an MSH 2.2 file made from a built-in box: shifted, its node sets named as
+/// Physical Surfaces (their boundary quads) and Physical Points (one node).
+struct MshPart {
+  Mesh box;
+  Eigen::Vector3d shift = Eigen::Vector3d::Zero();
+  std::string volume;
+  std::vector<std::pair<std::string, std::string>> surfaces, points;  // group name, the box's node set
+};
+
+Mesh plate_box(int n) {
   MeshParams p;
   p.size = {double(n), 1.0};
   p.depth = n;
   p.nx = n, p.ny = 1, p.nz = n;
   p.element = ElementType::H8;
-  const Mesh box = make_box(p);
-  std::ostringstream msh;
-  msh << std::setprecision(17) << "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n3\n3 1 \"plate\"\n2 2 \"bottom\"\n"
-      << "0 3 \"top_left_back\"\n$EndPhysicalNames\n$Nodes\n" << box.num_nodes() << "\n";
-  for (int k = 0; k < box.num_nodes(); ++k) {
-    const Eigen::Vector3d x = Q * box.nodes[k];
-    msh << k + 1 << " " << x.x() << " " << x.y() << " " << x.z() << "\n";
+  return make_box(p);
+}
+
+/// Writes the parts, turned by Q about the origin after their shifts, as an MSH 2.2 file
+/// (each part its own nodes) in the build tree.
+std::string write_msh(const std::string& name, const std::vector<MshPart>& parts, const Eigen::Matrix3d& Q) {
+  std::ostringstream names, nodes, elements;
+  int group = 0, node_base = 0, node_count = 0, element = 0;
+  for (const MshPart& part : parts) node_count += part.box.num_nodes();
+  nodes << std::setprecision(17);
+  for (const MshPart& part : parts) {
+    const Mesh& m = part.box;
+    for (int k = 0; k < m.num_nodes(); ++k) {
+      const Eigen::Vector3d x = Q * (m.nodes[k] + part.shift);
+      nodes << node_base + k + 1 << " " << x.x() << " " << x.y() << " " << x.z() << "\n";
+    }
+    const auto write = [&](int type, const std::vector<int>& cell) {
+      elements << ++element << " " << type << " 2 " << group << " " << group;
+      for (int k : cell) elements << " " << node_base + k + 1;
+      elements << "\n";
+    };
+    names << "3 " << ++group << " \"" << part.volume << "\"\n";
+    for (const auto& c : m.cells) write(5, c);
+    for (const auto& [surface, set] : part.surfaces) {
+      names << "2 " << ++group << " \"" << surface << "\"\n";
+      for (const auto& f : m.facets_within(m.node_set(set))) write(3, f);
+    }
+    for (const auto& [point, set] : part.points) {
+      names << "0 " << ++group << " \"" << point << "\"\n";
+      write(15, {m.node_set(set).front()});
+    }
+    node_base += m.num_nodes();
   }
-  const auto bottom = box.facets_within(box.node_set("bottom"));
-  msh << "$EndNodes\n$Elements\n" << box.cells.size() + bottom.size() + 1 << "\n";
-  int id = 0;
-  for (const auto& c : box.cells) {
-    msh << ++id << " 5 2 1 1";
-    for (int k : c) msh << " " << k + 1;
-    msh << "\n";
-  }
-  for (const auto& f : bottom) {
-    msh << ++id << " 3 2 2 2";
-    for (int k : f) msh << " " << k + 1;
-    msh << "\n";
-  }
-  msh << ++id << " 15 2 3 3 " << box.node_set("top_left_back").front() + 1 << "\n$EndElements\n";
-  return test::write_temp_file("turned_plate.msh", msh.str());
+  return test::write_temp_file(name, "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n" + std::to_string(group) + "\n" +
+                                         names.str() + "$EndPhysicalNames\n$Nodes\n" + std::to_string(node_count) + "\n" +
+                                         nodes.str() + "$EndNodes\n$Elements\n" + std::to_string(element) + "\n" +
+                                         elements.str() + "$EndElements\n");
+}
+
+/// The corner peel's plate (n x 1 x n H8) turned by Q about the origin: its body "plate",
+/// its face "bottom", its corner "top_left_back".
+std::string turned_plate(int n, const Eigen::Matrix3d& Q) {
+  return write_msh("turned_plate.msh", {{plate_box(n), Eigen::Vector3d::Zero(), "plate", {{"bottom", "bottom"}}, {{"top_left_back", "top_left_back"}}}}, Q);
 }
 
 }  // namespace
@@ -266,5 +293,60 @@ TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis 
     CHECK(std::abs(std::hypot(sa.Rbar[3 * i], sa.Rbar[3 * i + 1]) - std::hypot(sb.Rbar[3 * j], sb.Rbar[3 * j + 1])) <= 1e-8 * R);
     CHECK(std::abs(sa.u[3 * i + 2] - sb.u[3 * j + 2]) <= 1e-8 * u);
     CHECK(std::abs(std::hypot(sa.u[3 * i], sa.u[3 * i + 1]) - std::hypot(sb.u[3 * j], sb.u[3 * j + 1])) <= 1e-8 * u);
+  }
+}
+
+TEST_CASE("3D body-body interface: a plate peeled from a held elastic block behaves as on a rigid base", "[gmsh][solid]") {
+  // The block below the plate (its own nodes at y = 0) held at every node, in place or moved
+  // by d (the lifted corner moved alike): u = u_plate - u_block is the rigid base's u, the
+  // pairs' frames from the two faces' normals, the areas from the plate's face.
+  const Eigen::Vector3d d = GENERATE(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(0.01, -0.02, 0.03));
+  INFO("block moved by " << d.transpose());
+  const std::string file = write_msh("plate_on_block.msh",
+                                     {{plate_box(4), Eigen::Vector3d::Zero(), "plate", {{"bottom", "bottom"}}, {{"top_left_back", "top_left_back"}}},
+                                      {plate_box(4), Eigen::Vector3d(0, -1, 0), "block", {{"block_top", "top"}}, {}}},
+                                     Eigen::Matrix3d::Identity());
+  const std::vector<std::string> exact = {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12"};
+  const Config rigid = test::corner_peel(4, exact);
+  std::ostringstream loads;
+  loads << std::setprecision(17) << "loads = ( { node_set = \"top_left_back\"; type = \"displacement\"; component = \"y\"; value = "
+        << 0.15 + d.y() << "; }";
+  for (int k = 0; k < 3; ++k)
+    loads << ",\n  { node_set = \"block\"; type = \"displacement\"; component = \"" << "xyz"[k] << "\"; value = " << d[k] << "; }";
+  loads << " );\n";
+  const Config two = test::config_from_text("mesh = { file = \"" + file + R"("; };
+material = { E = 6.9e4; nu = 0.333; };
+interface = { boundary = "bottom"; opposite = "block_top"; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };
+)" + loads.str() + R"(
+time = { T = 5.0; steps = 50; };
+integrator = { method = "euler"; };
+solver = { active_set = false; tolerance = 1e-12; };
+)");
+  const RunResult a = Simulation(rigid).run(), b = Simulation(two).run();
+  const Model ma = test::make_model(rigid), mb = test::make_model(two);
+  REQUIRE(mb.contact_nodes() == ma.contact_nodes());
+  const auto key = [](const Eigen::Vector3d& x) {
+    return std::array<long, 3>{std::lround(1e6 * x.x()), std::lround(1e6 * x.y()), std::lround(1e6 * x.z())};
+  };
+  std::map<std::array<long, 3>, int> pair_at;
+  for (int j = 0; j < mb.interface().size(); ++j) {
+    const ContactPair& c = mb.interface().pairs[j];
+    CHECK(c.opposite >= 0);
+    CHECK((mb.mesh().nodes[c.node] - mb.mesh().nodes[c.opposite]).norm() <= 1e-12);
+    CHECK((c.frame.n - Eigen::Vector3d::UnitY()).norm() <= 1e-12);
+    CHECK(c.g0 == 0.0);
+    pair_at[key(mb.mesh().nodes[c.node])] = j;
+  }
+  const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
+  REQUIRE(sa.beta.minCoeff() < 0.5);
+  const double R = sa.Rbar.cwiseAbs().maxCoeff(), u = sa.u.cwiseAbs().maxCoeff();
+  for (int i = 0; i < ma.interface().size(); ++i) {
+    const int j = pair_at.at(key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    CHECK(mb.interface().pairs[j].measure == Approx(ma.interface().pairs[i].measure).epsilon(1e-14));
+    CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
+    for (int k = 0; k < 3; ++k) {
+      CHECK(std::abs(sa.Rbar[3 * i + k] - sb.Rbar[3 * j + k]) <= 1e-8 * R);
+      CHECK(std::abs(sa.u[3 * i + k] - sb.u[3 * j + k]) <= 1e-8 * u);
+    }
   }
 }
