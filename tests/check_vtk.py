@@ -2,7 +2,7 @@
 """Opens every frame of a run with VTK's own XML readers (the binary, zlib-compressed files
 ParaView reads) and checks them:
   - results.pvd and interface.pvd list the same times, a frame at t = 0 among them;
-  - the bodies: no NaN, no interface field on bulk nodes, stress and strain full symmetric
+  - the bodies: each cell's type matches its number of points; no NaN, no interface field on bulk nodes, stress and strain full symmetric
     tensors with sigma_zz = nu (sigma_xx + sigma_yy) and eps_zz = 0 in plane strain (2D), or
     tetrahedra and hexahedra only and sigma = lambda tr(eps) I + 2 G eps with E (3D: a fourth
     argument);
@@ -59,6 +59,10 @@ for (t, vtu), (_, vtp) in zip(bodies, interface):
         T = cd[name].reshape(-1, 3, 3)
         assert abs(T - T.transpose(0, 2, 1)).max() <= 1e-12 * max(1.0, abs(T).max()), f"{vtu}: {name} not symmetric"
     S, Eps = cd["stress"].reshape(-1, 3, 3), cd["strain"].reshape(-1, 3, 3)
+    points_of = {5: 3, 9: 4, 10: 4, 12: 8}  # VTK_TRIANGLE, VTK_QUAD, VTK_TETRA, VTK_HEXAHEDRON
+    for c in range(grid.GetNumberOfCells()):
+        kind, points = grid.GetCellType(c), grid.GetCell(c).GetNumberOfPoints()
+        assert points_of.get(kind) == points, f"{vtu}: cell {c} of VTK type {kind} has {points} points"
     solid = all(grid.GetCellType(c) in (10, 12) for c in range(grid.GetNumberOfCells()))  # VTK_TETRA, VTK_HEXAHEDRON
     if solid:
         lam, G = E * nu / ((1 + nu) * (1 - 2 * nu)), E / (2 * (1 + nu))
