@@ -1,7 +1,8 @@
 // fc2d-bench [--benchmarks CONFIG_DIR] [--copies K] [FILE.dat...]: the project's contact solvers (bipotential
 // in its Gauss-Seidel and Jacobi forms, rccm, newton) against Siconos' fc2d NSGS on 2D frictional contact
 // problems: Siconos .dat files (e.g. ../shared/data/siconos-fc2d/) and, with --benchmarks,
-// the condensed problems that B1 and B2 (Euler-210) solve at every 40th step.
+// the condensed problems that B1 and B2 (Euler-210) solve at every 40th step, and in 3D
+// those of the corner peel (config/corner-peel.cfg, Euler-210) against Siconos' fc3d NSGS.
 // Per problem and solver: iterations, Siconos' error measure (fc2d_compute_error) of the
 // solution, time per solve, and Siconos' time over each solver's: Siconos is asked for the
 // error our default (bipotential Gauss-Seidel) solve reached, or 1e-10 (our tolerance) where
@@ -10,7 +11,7 @@
 // (W block-diagonal): a size test of the sparse path (the solution is K copies of one).
 #include "rccm/contact/contact_solver.hpp"
 #include "rccm/base/errors.hpp"
-#include "rccm/fem/rectangle_mesh.hpp"
+#include "rccm/fem/mesh_source.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "siconos_peer.hpp"
 
@@ -71,11 +72,10 @@ constexpr Contender contenders[] = {{"bipotential-GS", ContactMethod::Bipotentia
 /// Where our default solve does not converge (a hyperstatic granular snapshot, W singular:
 /// Siconos' NSGS does not either), the time each takes to the error Siconos' NSGS reaches at
 /// its tolerance 1e-6, if it reaches that: ours with the fewest sweeps (to 10 %) that reach it.
-void to_siconos_error(const std::string& name, const PlainContactProblem& p, const ContactProblem& pb) {
+void to_siconos_error(const std::string& name, const PlainContactProblem& p, const ContactProblem& pb, SolverParams params) {
   peer::PeerSolution n;
   const double siconos_seconds = siconos_nsgs(p, 1e-6, n);
   if (n.info != 0) return;
-  SolverParams params;
   params.tolerance = 1e-10;
   ContactSolution s;
   const auto reaches = [&](int sweeps) {
@@ -98,8 +98,9 @@ void to_siconos_error(const std::string& name, const PlainContactProblem& p, con
 
 /// Each of our solvers cold from zero, then Siconos NSGS at the error our default solve
 /// (bipotential Gauss-Seidel) reached; the last column is Siconos' time over each solver's.
+/// `settings`: the config's solver section (sweeps alone or the exact step, ...), else defaults.
 /// Returns Siconos' time per solve.
-double compare(const std::string& name, const PlainContactProblem& p, const ContactProblem& pb) {
+double compare(const std::string& name, const PlainContactProblem& p, const ContactProblem& pb, const SolverParams& settings = {}) {
   struct Measured {
     const char* name;
     ContactSolution s;
@@ -107,7 +108,7 @@ double compare(const std::string& name, const PlainContactProblem& p, const Cont
   };
   std::vector<Measured> ours;
   for (const Contender& c : contenders) {
-    SolverParams params;
+    SolverParams params = settings;
     params.tolerance = 1e-10;
     params.max_iterations = 100000;
     params.method = c.method;
@@ -122,7 +123,7 @@ double compare(const std::string& name, const PlainContactProblem& p, const Cont
     m.error = peer::error(p, m.s.Rbar);
     ours.push_back(m);
   }
-  if (!ours.empty() && !ours.front().s.converged) to_siconos_error(name, p, pb);
+  if (!ours.empty() && !ours.front().s.converged) to_siconos_error(name, p, pb, settings);
   const double target = std::max(ours.front().error, 1e-10);
   peer::PeerSolution n;
   const double seconds = siconos_nsgs(p, target, n);
@@ -142,10 +143,9 @@ double compare(const std::string& name, const PlainContactProblem& p, const Cont
 }
 
 /// The solve as a run makes it: warm-started from the previous accepted step's solution by
-/// the solver that solved before (it keeps its factorization). Siconos' 2D NSGS has no warm
-/// start (it starts from zero), so its cold time is the comparison.
-void warm_row(const std::string& name, const peer::StepProblem& sp, double siconos_seconds) {
-  SolverParams params;
+/// the solver that solved before (it keeps its factorization). Siconos' NSGS is run without a
+/// warm start (it starts from zero), so its cold time is the comparison.
+void warm_row(const std::string& name, const peer::StepProblem& sp, double siconos_seconds, SolverParams params) {
   params.tolerance = 1e-10;
   params.max_iterations = 100000;
   const std::unique_ptr<ContactSolver> solver = make_contact_solver(params);
@@ -187,12 +187,12 @@ int main(int argc, char** argv) {
     try {
       if (std::strcmp(argv[a], "--benchmarks") == 0 && a + 1 < argc) {
         const std::string dir = argv[++a];
-        for (const char* file : {"b1", "b2"}) {
-          const Config cfg = load_config(dir + "/" + file + ".cfg", {"integrator.method=euler"});
-          const Model model(cfg, make_rectangle(cfg.mesh));
+        for (const char* file : {"b1", "b2", "corner-peel"}) {
+          const Config cfg = load_config(dir + "/" + file + ".cfg", {"integrator.method=euler", "time.steps=210"});
+          const Model model(cfg, make_mesh(cfg));
           for (const peer::StepProblem& sp : peer::step_problems(model, cfg, 40)) {
             const std::string label = std::string(file) + " step " + std::to_string(sp.step);
-            warm_row(label, sp, compare(label, sp.plain, sp.problem));
+            warm_row(label, sp, compare(label, sp.plain, sp.problem, cfg.solver), cfg.solver);
           }
         }
         continue;
