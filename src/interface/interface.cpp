@@ -13,9 +13,12 @@ namespace {
 
 RccmLaw law_of(const InterfaceParams& p) { return {p.Cn, p.Ct, p.w, p.alpha, p.mu}; }
 
-std::string point(const Eigen::Vector3d& x) {
+/// A point or vector in a message: (x, y), or (x, y, z) on a 3D mesh.
+std::string point(const Eigen::Vector3d& x, int dim) {
   std::ostringstream m;
-  m << "(" << x.x() << ", " << x.y() << ")";
+  m << "(" << x.x() << ", " << x.y();
+  if (dim == 3) m << ", " << x.z();
+  m << ")";
   return m.str();
 }
 
@@ -35,7 +38,7 @@ class PairBuilder {
     for (std::size_t k = 0; k < nodes_.size(); ++k) {
       if (length[k] <= 0)
         fail(".boundary", "node set '" + p_.boundary + "' must be a chain of boundary edges (node " +
-                              std::to_string(nodes_[k]) + " at " + point(mesh_.nodes[nodes_[k]]) + " lies on none of its edges)");
+                              std::to_string(nodes_[k]) + " at " + point(mesh_.nodes[nodes_[k]], mesh_.dim) + " lies on none of its edges)");
       ContactPair c;
       c.node = nodes_[k];
       c.measure = a[k];
@@ -110,7 +113,7 @@ class PairBuilder {
       c.g0 = circle.gap_at(x);
       if (c.g0 < -1e-6 * p_.radius) {
         std::ostringstream m;
-        m << "contact node " << k << " at " << point(x) << " lies " << -c.g0 << " mm inside the rigid part (the circle's "
+        m << "contact node " << k << " at " << point(x, mesh_.dim) << " lies " << -c.g0 << " mm inside the rigid part (the circle's "
           << (p_.inside ? "outside" : "inside") << "); the boundary must lie on the " << (p_.inside ? "inner" : "outer")
           << " side of the circle";
         fail(".circle", m.str());
@@ -122,7 +125,7 @@ class PairBuilder {
       // The averaged normal: B's outward and A's inward, from B into A.
       const Eigen::Vector3d n = outward_opposite_[k] - outward_[k];
       if (n.norm() < 1e-6 || outward_opposite_[k].dot(outward_[k]) > -0.5)
-        fail(".opposite", "at contact node " + std::to_string(k) + " " + point(x) + " the boundaries of '" + p_.boundary +
+        fail(".opposite", "at contact node " + std::to_string(k) + " " + point(x, mesh_.dim) + " the boundaries of '" + p_.boundary +
                               "' and '" + p_.opposite + "' do not face each other (their outward normals are not opposite)");
       c.frame = plane_frame(n.normalized());
       c.g0 = c.frame.n.dot(x - mesh_.nodes[c.opposite]);
@@ -134,9 +137,9 @@ class PairBuilder {
   void require_facing(const Eigen::Vector3d& n, std::size_t k, const char* setting, const char* what) const {
     if (-n.dot(outward_[k]) >= 0.5) return;
     std::ostringstream m;
-    m << what << " (" << n.x() << ", " << n.y() << ") does not point into the body at contact node " << k << " "
-      << point(mesh_.nodes[nodes_[k]]) << ", where the boundary's inward normal is (" << 0.0 - outward_[k].x() << ", "
-      << 0.0 - outward_[k].y() << "); give the normal from the foundation into the body";
+    m << what << " " << point(n, mesh_.dim) << " does not point into the body at contact node " << k << " "
+      << point(mesh_.nodes[nodes_[k]], mesh_.dim) << ", where the boundary's inward normal is "
+      << point(Eigen::Vector3d::Zero() - outward_[k], mesh_.dim) << "; give the normal from the foundation into the body";
     fail(setting, m.str());
   }
 
@@ -164,20 +167,20 @@ class PairBuilder {
         if (d < d_best) d_best = d, best = n;
       }
       if (best == nodes_[k])
-        fail(".opposite", "node " + point(x) + " belongs to both '" + p_.boundary + "' and '" + p_.opposite +
+        fail(".opposite", "node " + point(x, mesh_.dim) + " belongs to both '" + p_.boundary + "' and '" + p_.opposite +
                               "': the bodies share their nodes there; give each body its own curve (3D: surface) along the "
                               "interface (its own points), meshed alike");
       if (d_best > worst) worst = d_best, worst_k = static_cast<int>(k);
       if (taken[best] >= 0 && d_best <= tolerance)
-        fail(".opposite", "nodes " + point(x) + " and " + point(mesh_.nodes[nodes_[taken[best]]]) + " of '" + p_.boundary +
-                              "' both face node " + point(mesh_.nodes[best]) + " of '" + p_.opposite + "'");
+        fail(".opposite", "nodes " + point(x, mesh_.dim) + " and " + point(mesh_.nodes[nodes_[taken[best]]], mesh_.dim) + " of '" + p_.boundary +
+                              "' both face node " + point(mesh_.nodes[best], mesh_.dim) + " of '" + p_.opposite + "'");
       taken[best] = static_cast<int>(k);
       opposite_.push_back(best);
     }
     if (worst > tolerance) {
       std::ostringstream m;
       m << "the meshes of '" << p_.boundary << "' and '" << p_.opposite << "' do not match: node "
-        << point(mesh_.nodes[nodes_[worst_k]]) << " of '" << p_.boundary << "' is " << worst << " mm from the nearest node of '"
+        << point(mesh_.nodes[nodes_[worst_k]], mesh_.dim) << " of '" << p_.boundary << "' is " << worst << " mm from the nearest node of '"
         << p_.opposite << "' (tolerance " << tolerance << " mm); mesh both curves (surfaces) alike (Transfinite Curve, Transfinite Surface), or raise "
         << p_.path << ".tolerance";
       fail(".opposite", m.str());
@@ -210,7 +213,7 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
     for (const ContactPair& c : PairBuilder(mesh, cfg, p, law).build()) {
       for (int node : {c.node, c.opposite})
         if (node >= 0 && owner[node] >= 0)
-          throw InputError(cfg.where(p.path + ".boundary") + ": node " + point(mesh.nodes[node]) + " is on " +
+          throw InputError(cfg.where(p.path + ".boundary") + ": node " + point(mesh.nodes[node], mesh.dim) + " is on " +
                            cfg.interfaces[owner[node]].path + " already: a node belongs to one interface (a precrack "
                            "is a node set of the interface's boundary: " + p.path + ".precrack)");
       for (int node : {c.node, c.opposite})

@@ -636,8 +636,11 @@ std::vector<LoadParams> read_loads(const Reader& r, const Setting& root, double 
   return out;
 }
 
-SolverParams read_solver(const Reader& r, const Setting& root) {
+SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   SolverParams S;
+  // The exact step in 3D rebuilds its dense (3n)^2 system whenever slip directions turn:
+  // sweeps alone by default there (README "3D", measured 8x faster on the corner peel).
+  S.active_set = dim == 2;
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
   r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation",
@@ -781,7 +784,7 @@ Config read(const Reader& r, const Setting& root, const std::string& path) {
   c.interfaces = read_interfaces(r, root, dim);
   c.time = read_time(r, root);
   c.loads = read_loads(r, root, c.time.T, dim);
-  c.solver = read_solver(r, root);
+  c.solver = read_solver(r, root, dim);
   c.integrator = read_integrator(r, root);
   c.output = read_output(r, root, c.time.T, dim);
   check_consistency(r, root, c);

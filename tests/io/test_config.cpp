@@ -79,6 +79,13 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
   CHECK_THROWS_WITH(test::config_from_text(good, {"time.[0].T=1"}), Catch::Contains("not one"));
 }
 
+TEST_CASE("the exact step is on by default in 2D, off in 3D, and either way when set", "[config]") {
+  CHECK(load_config(test::shipped("b1.cfg")).solver.active_set);
+  CHECK_FALSE(load_config(test::shipped("corner-peel.cfg")).solver.active_set);
+  CHECK(load_config(test::shipped("corner-peel.cfg"), {"solver.active_set=true"}).solver.active_set);
+  CHECK_FALSE(load_config(test::shipped("b1.cfg"), {"solver.active_set=false"}).solver.active_set);
+}
+
 TEST_CASE("a missing file is named", "[config]") {
   CHECK_THROWS_WITH(load_config("/nonexistent/b1.cfg"), Catch::Contains("/nonexistent/b1.cfg: cannot read"));
 }

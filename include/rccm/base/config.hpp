@@ -132,7 +132,7 @@ struct SolverParams {
   SweepForm form = SweepForm::GaussSeidel;
   RhoRule rho = RhoRule::Eigen;  // eigen: 1/lambda_max of the node block; paper: eq. 34
   double relaxation = 1.0;       // Jacobi under-relaxation of the update, in (0, 1]
-  bool active_set = true;        // the exact step: solve the linear problem of a status pattern
+  bool active_set = true;        // the exact step: solve the linear problem of a status pattern (default: 2D only)
   int active_set_max_nodes = 4096;  // beyond, on a dense W0: sweeps only (the exact step keeps two dense (2n)^2 matrices: 32 n^2 bytes)
   int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, 2D newton)
   LinearSolverParams linear;        // the body's K0 solves (setup: W0, load responses; body state at output)
