@@ -53,7 +53,7 @@ std::string Config::fingerprint() const {
   }
   for (const InterfaceParams& p : interfaces) {
     h("interface.boundary", p.boundary)("interface.facing", double(p.facing)).list("interface.normal", p.normal);
-    h.list("interface.centre", p.centre)("interface.radius", p.radius)("interface.inside", p.inside);
+    h.list("interface.centre", p.centre).list("interface.axis", p.axis)("interface.radius", p.radius)("interface.inside", p.inside);
     h("interface.opposite", p.opposite)("interface.tolerance", p.tolerance)("interface.precrack", p.precrack);
     h("interface.Cn", p.Cn)("interface.Ct", p.Ct);
     h("interface.w", p.w)("interface.alpha", p.alpha)("interface.mu", p.mu);

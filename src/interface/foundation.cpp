@@ -15,12 +15,12 @@ Frame plane_frame(const Eigen::Vector3d& n) {
 }
 
 Frame CircleFoundation::frame_at(const Eigen::Vector3d& x) const {
-  const Eigen::Vector3d out = (x - centre).normalized();
+  const Eigen::Vector3d out = radial(x).normalized();
   return plane_frame(inside ? Eigen::Vector3d(-out) : out);
 }
 
 double CircleFoundation::gap_at(const Eigen::Vector3d& x) const {
-  const double r = (x - centre).norm();
+  const double r = radial(x).norm();
   return inside ? radius - r : r - radius;
 }
 

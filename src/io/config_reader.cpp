@@ -533,7 +533,14 @@ InterfaceParams read_interface(const Reader& r, const Setting& in, int dim) {
   }
   if (in.exists("circle")) {
     const Setting& c = r.group(in, "circle");
-    r.only(c, {"centre", "radius", "side"});
+    r.only(c, {"centre", "radius", "side", "axis"});
+    if (c.exists("axis")) {
+      if (dim == 2) r.fail(c["axis"], "a circle in 2D is a cylinder along z already: leave 'axis' out (3D: a cylinder's axis)");
+      p.axis = r.coordinates(c, "axis", 3);
+      const double len = std::sqrt(p.axis[0] * p.axis[0] + p.axis[1] * p.axis[1] + p.axis[2] * p.axis[2]);
+      r.check(len > 1e-12, c["axis"], "must be a nonzero vector", len);
+      p.axis = {p.axis[0] / len, p.axis[1] / len, p.axis[2] / len};
+    }
     p.facing = Facing::Circle;
     p.centre = r.coordinates(c, "centre", dim);
     p.radius = r.number(c, "radius");

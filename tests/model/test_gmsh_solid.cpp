@@ -45,6 +45,7 @@ struct MshPart {
   Eigen::Vector3d shift = Eigen::Vector3d::Zero();
   std::string volume;
   std::vector<std::pair<std::string, std::string>> surfaces, points;  // group name, the box's node set
+  std::vector<std::pair<std::string, std::string>> curves = {};       // written as lines between the set's nodes in turn
 };
 
 Mesh plate_box(int n) {
@@ -80,6 +81,11 @@ std::string write_msh(const std::string& name, const std::vector<MshPart>& parts
       names << "2 " << ++group << " \"" << surface << "\"\n";
       for (const auto& f : m.facets_within(m.node_set(set))) write(3, f);
     }
+    for (const auto& [curve, set] : part.curves) {
+      names << "1 " << ++group << " \"" << curve << "\"\n";
+      const std::vector<int>& nodes_of = m.node_set(set);
+      for (std::size_t k = 0; k + 1 < nodes_of.size(); ++k) write(1, {nodes_of[k], nodes_of[k + 1]});
+    }
     for (const auto& [point, set] : part.points) {
       names << "0 " << ++group << " \"" << point << "\"\n";
       write(15, {m.node_set(set).front()});
@@ -90,6 +96,28 @@ std::string write_msh(const std::string& name, const std::vector<MshPart>& parts
                                          names.str() + "$EndPhysicalNames\n$Nodes\n" + std::to_string(node_count) + "\n" +
                                          nodes.str() + "$EndNodes\n$Elements\n" + std::to_string(element) + "\n" +
                                          elements.str() + "$EndElements\n");
+}
+
+/// A 2D mesh of Q4 cells extruded along z into one layer of H8 cells of `depth`: each node
+/// set holds its nodes of both faces; the facets are the side quads of the boundary edges.
+Mesh extrude(const Mesh& plane, double depth) {
+  Mesh m;
+  m.dim = 3;
+  const int n = plane.num_nodes();
+  for (double z : {0.0, depth})
+    for (const Eigen::Vector3d& x : plane.nodes) m.nodes.emplace_back(x.x(), x.y(), z);
+  for (const auto& c : plane.cells) {
+    REQUIRE(c.size() == 4);
+    m.cells.push_back({c[0], c[1], c[2], c[3], c[0] + n, c[1] + n, c[2] + n, c[3] + n});
+  }
+  m.cell_body = plane.cell_body;
+  m.body_names = plane.body_names;
+  for (const auto& e : plane.facets) m.facets.push_back({e[0], e[1], e[1] + n, e[0] + n});
+  for (const auto& [name, set] : plane.node_sets) {
+    std::vector<int>& both = m.node_sets[name];
+    for (int k : set) both.push_back(k), both.push_back(k + n);
+  }
+  return m;
 }
 
 /// The corner peel's plate (n x 1 x n H8) turned by Q about the origin: its body "plate",
@@ -348,6 +376,61 @@ solver = { active_set = false; tolerance = 1e-12; };
     for (int k = 0; k < 3; ++k) {
       CHECK(std::abs(sa.Rbar[3 * i + k] - sb.Rbar[3 * j + k]) <= 1e-8 * R);
       CHECK(std::abs(sa.u[3 * i + k] - sb.u[3 * j + k]) <= 1e-8 * u);
+    }
+  }
+}
+
+TEST_CASE("3D cylinder: config/coating-curved.cfg extruded into a slab of H8 held at u_z = 0 reproduces "
+          "the 2D coating on its circle",
+          "[gmsh][solid]") {
+  // 20 x 4 cells over the 120 degrees, Euler-100 over the first 2 s (the front starts), the
+  // sweeps and the exact step to 1e-12; the cylinder's axis is z.
+  const std::vector<std::string> settings = {"mesh.parameters.na=20", "integrator={method=\"euler\";}", "time.T=2.0",
+                                             "time.steps=100", "output.times=[1.0, 2.0]", "solver.tolerance=1e-12",
+                                             "output.watch=()", "output.probes=()"};
+  const Config plane = load_config(test::shipped("coating-curved.cfg"), settings);
+  const Mesh flat = read_gmsh(plane.mesh, "coating-curved.cfg");
+  const std::string file = write_msh("coating_slab.msh", {{extrude(flat, 1.0), Eigen::Vector3d::Zero(), "coating",
+                                                            {{"bonded", "bonded"}}, {}, {{"tip", "tip"}}}},
+                                     Eigen::Matrix3d::Identity());
+  const Config slab = test::config_from_text("mesh = { file = \"" + file + R"("; };
+material = { E = 3000.0; nu = 0.35; };
+interface = { boundary = "bonded"; circle = { centre = [0.0, 0.0, 0.0]; radius = 20.0; side = "outside"; axis = [0.0, 0.0, 2.0]; };
+              Cn = 1.0e4; Ct = 1.0e4; w = 0.01; alpha = 0.5; mu = 0.3; };
+loads = ( { node_set = "tip"; type = "displacement"; component = "y"; value = 1.0; },
+          { node_set = "coating"; type = "displacement"; component = "z"; value = 0.0; } );
+time = { T = 2.0; steps = 100; };
+integrator = { method = "euler"; };
+solver = { tolerance = 1e-12; active_set = true; };
+output = { times = [1.0, 2.0]; };
+)");
+  const RunResult r2 = Simulation(plane).run(), r3 = Simulation(slab).run();
+  const Model m2 = test::make_model(plane), m3 = test::make_model(slab);
+  REQUIRE(m3.contact_nodes() == 2 * m2.contact_nodes());
+  std::map<std::pair<long, long>, int> pair_at;  // the 2D pair at (x, y)
+  for (int i = 0; i < m2.interface().size(); ++i) {
+    const Eigen::Vector3d x = m2.mesh().nodes[m2.interface().pairs[i].node];
+    pair_at[{std::lround(1e6 * x.x()), std::lround(1e6 * x.y())}] = i;
+  }
+  REQUIRE(r2.snapshots.size() == r3.snapshots.size());
+  CHECK(r2.snapshots.back().beta.minCoeff() < 0.5);  // the front has started
+  for (std::size_t s = 0; s < r2.snapshots.size(); ++s) {
+    const Snapshot &a = r2.snapshots[s], &b = r3.snapshots[s];
+    const double u_scale = a.u.cwiseAbs().maxCoeff(), R_scale = a.Rbar.cwiseAbs().maxCoeff();
+    REQUIRE(R_scale > 0);
+    for (int j = 0; j < m3.contact_nodes(); ++j) {
+      const ContactPair& c = m3.interface().pairs[j];
+      const Eigen::Vector3d x = m3.mesh().nodes[c.node];
+      const int i = pair_at.at({std::lround(1e6 * x.x()), std::lround(1e6 * x.y())});
+      const ContactPair& c2 = m2.interface().pairs[i];
+      CHECK((c.frame.n - c2.frame.n).norm() <= 1e-12);  // radial, off the axis
+      CHECK(c.g0 == Approx(c2.g0).margin(1e-12));
+      CHECK(std::abs(b.beta[j] - a.beta[i]) <= 1e-8);
+      CHECK(std::abs(b.u[3 * j] - a.u[2 * i]) <= 1e-8 * u_scale);          // u_t1 = u_t
+      CHECK(std::abs(b.u[3 * j + 1]) <= 1e-12 * u_scale);                  // along the axis
+      CHECK(std::abs(b.u[3 * j + 2] - a.u[2 * i + 1]) <= 1e-8 * u_scale);  // u_n
+      CHECK(std::abs(2 * b.Rbar[3 * j + 2] - a.Rbar[2 * i + 1]) <= 1e-8 * R_scale);
+      CHECK(std::abs(2 * b.Rbar[3 * j] - a.Rbar[2 * i]) <= 1e-8 * R_scale);
     }
   }
 }

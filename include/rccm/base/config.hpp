@@ -77,6 +77,7 @@ struct InterfaceParams {
   Facing facing = Facing::Line;
   std::array<double, 3> normal{0.0, 1.0, 0.0};  // line (3D: plane): its normal, into the body (unit)
   std::array<double, 3> centre{};          // circle (3D: sphere): centre, mm (global frame)
+  std::array<double, 3> axis{};            // 3D circle: a cylinder's unit axis through the centre; zero: a sphere
   double radius = 0.0;                     // circle: radius, mm
   bool inside = true;                      // circle: the body lies inside it (a hole), or outside (a cylinder)
   std::string opposite;                    // body: node set of body B along the interface

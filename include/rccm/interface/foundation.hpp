@@ -1,7 +1,7 @@
 // The rigid foundation an interface faces, and the local frame and initial gap it gives each
 // contact node (docs/MODEL.md s2): a line, given by its unit normal pointing into the body,
-// or a circle with the body inside it (a hole) or outside it (a cylinder); in 3D a plane or a
-// sphere.
+// or a circle with the body inside it (a hole) or outside it (a cylinder); in 3D a plane, a
+// sphere, or a cylinder about an axis.
 #pragma once
 
 #include <Eigen/Core>
@@ -31,7 +31,10 @@ struct FlatFoundation {
 struct CircleFoundation {
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   double radius = 0;
-  bool inside = true;  // the body inside the circle: n points to the centre
+  bool inside = true;  // the body inside the circle: n points to the centre (the axis)
+  Eigen::Vector3d axis = Eigen::Vector3d::Zero();  // 3D: a cylinder's unit axis through the centre; zero: a sphere (2D: the circle)
+  /// From the centre (a cylinder: the nearest point of its axis) to x.
+  Eigen::Vector3d radial(const Eigen::Vector3d& x) const { return (x - centre) - (x - centre).dot(axis) * axis; }
   /// The radial frame at x: n from the circle into the body.
   Frame frame_at(const Eigen::Vector3d& x) const;
   /// The distance from the circle to x along n (negative: x lies in the rigid part).
