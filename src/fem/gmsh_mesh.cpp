@@ -67,6 +67,12 @@ int top_dimension() {
   return volumes.empty() ? 2 : 3;
 }
 
+/// Opens `p.file` with the .geo's parameters set (throws gmsh's errors).
+void open_with_parameters(const MeshParams& p) {
+  for (const auto& [name, value] : p.parameters) gmsh::onelab::setNumber(name, {value});
+  gmsh::open(p.file);
+}
+
 /// The name of a physical group; an unnamed group is "<kind> <tag>".
 std::string group_name(int dim, int tag) {
   std::string name;
@@ -82,7 +88,6 @@ class Reader {
     open();
     for (int k = 0; k < p_.refine; ++k) gmsh::model::mesh::refine();
     m_.source = p_.file;
-    dim_ = m_.dim = top_dimension();
     read_bodies();
     read_node_sets();
     find_facets();
@@ -99,11 +104,11 @@ class Reader {
     if (ext == ".msh" && !p_.parameters.empty()) fail("mesh.parameters set the DefineConstant values of a .geo file, not of a .msh");
     try {
       if (!p_.parameters.empty()) check_parameters();
-      for (const auto& [name, value] : p_.parameters) gmsh::onelab::setNumber(name, {value});
-      gmsh::open(p_.file);
+      open_with_parameters(p_);
+      m_.dim = top_dimension();
       std::vector<int> types;
-      gmsh::model::mesh::getElementTypes(types, top_dimension());
-      if (types.empty()) gmsh::model::mesh::generate(top_dimension());
+      gmsh::model::mesh::getElementTypes(types, m_.dim);
+      if (types.empty()) gmsh::model::mesh::generate(m_.dim);
     } catch (const std::string& e) {
       fail(GmshSession::last_error(e));
     } catch (const std::exception& e) {
@@ -129,20 +134,20 @@ class Reader {
     if (it != index_.end()) return it->second;
     std::vector<double> x, param;
     gmsh::model::mesh::getNode(tag, x, param);
-    if (dim_ == 2 && std::abs(x[2]) > 1e-12 * (1 + std::abs(x[0]) + std::abs(x[1]))) {
+    if (m_.dim == 2 && std::abs(x[2]) > 1e-12 * (1 + std::abs(x[0]) + std::abs(x[1]))) {
       std::ostringstream m;
       m << "node " << tag << " lies at z = " << x[2] << ": a 2D mesh lies in the plane z = 0";
       fail(m.str());
     }
-    m_.nodes.emplace_back(x[0], x[1], dim_ == 3 ? x[2] : 0.0);
+    m_.nodes.emplace_back(x[0], x[1], m_.dim == 3 ? x[2] : 0.0);
     return index_[tag] = m_.num_nodes() - 1;
   }
 
   /// Each Physical Surface (2D) or Physical Volume (3D) is a body.
   void read_bodies() {
-    const std::string kind = physical(dim_);
+    const std::string kind = physical(m_.dim);
     gmsh::vectorpair groups;
-    gmsh::model::getPhysicalGroups(groups, dim_);
+    gmsh::model::getPhysicalGroups(groups, m_.dim);
     if (groups.empty()) fail("no Physical Surface: name each body, e.g. Physical Surface(\"arm\") = {1};");
     std::map<int, std::string> owner;  // entity -> its body
     for (const auto& [dim, tag] : groups) {
@@ -176,7 +181,7 @@ class Reader {
       m_.node_sets[name].assign(nodes_of_body.begin(), nodes_of_body.end());
     }
     gmsh::vectorpair entities;
-    gmsh::model::getEntities(entities, dim_);
+    gmsh::model::getEntities(entities, m_.dim);
     for (const auto& [dim, tag] : entities) {
       std::vector<int> types;
       gmsh::model::mesh::getElementTypes(types, dim, tag);
@@ -189,14 +194,14 @@ class Reader {
   /// Nodes per cell of a gmsh element type: linear triangles and quadrangles (2D),
   /// tetrahedra and hexahedra (3D).
   int element_nodes(int type, const std::string& group) const {
-    if (dim_ == 2 && (type == 2 || type == 3)) return type == 2 ? 3 : 4;
-    if (dim_ == 3 && (type == 4 || type == 5)) return type == 4 ? 4 : 8;
+    if (m_.dim == 2 && (type == 2 || type == 3)) return type == 2 ? 3 : 4;
+    if (m_.dim == 3 && (type == 4 || type == 5)) return type == 4 ? 4 : 8;
     std::string name;
     int dim = 0, order = 0, count = 0, primary = 0;
     std::vector<double> local;
     gmsh::model::mesh::getElementProperties(type, name, dim, order, count, local, primary);
-    fail(physical(dim_) + " '" + group + "' has " + name + " cells: rccm reads " +
-         (dim_ == 2 ? "linear triangles (T3) and quadrangles (Q4)" : "linear tetrahedra (T4) and hexahedra (H8)") +
+    fail(physical(m_.dim) + " '" + group + "' has " + name + " cells: rccm reads " +
+         (m_.dim == 2 ? "linear triangles (T3) and quadrangles (Q4)" : "linear tetrahedra (T4) and hexahedra (H8)") +
          (order > 1 ? "; mesh with Mesh.ElementOrder = 1" : ""));
   }
 
@@ -204,14 +209,16 @@ class Reader {
   /// positive volume (a mirrored cell's node order reversed face by face).
   void orient(std::vector<int>& cell, const std::string& group) {
     const double volume = signed_measure(cell);
-    if (volume < 0 && dim_ == 2) std::reverse(cell.begin() + 1, cell.end());
-    if (volume < 0 && cell.size() == 4 && dim_ == 3) std::swap(cell[1], cell[2]);
+    if (volume < 0 && m_.dim == 2) std::reverse(cell.begin() + 1, cell.end());
+    if (volume < 0 && cell.size() == 4 && m_.dim == 3) std::swap(cell[1], cell[2]);
     if (volume < 0 && cell.size() == 8) std::swap(cell[1], cell[3]), std::swap(cell[5], cell[7]);
     if (volume == 0 || signed_measure(cell) <= 0) {
       const Eigen::Vector3d& x = m_.nodes[cell[0]];
       std::ostringstream m;
-      m << physical(dim_) << " '" << group << "' has a cell of zero " << (dim_ == 2 ? "area" : "volume") << " at (" << x.x()
-        << ", " << x.y() << (dim_ == 3 ? ", " + std::to_string(x.z()) : std::string()) << ")";
+      m << physical(m_.dim) << " '" << group << "' has a cell of zero " << (m_.dim == 2 ? "area" : "volume") << " at ("
+        << x.x() << ", " << x.y();
+      if (m_.dim == 3) m << ", " << x.z();
+      m << ")";
       fail(m.str());
     }
   }
@@ -220,7 +227,7 @@ class Reader {
   /// nodes 1, 3 (H8) or 1, 2 (T4) and 4 (H8) or 3 (T4), positive for a right-handed cell.
   double signed_measure(const std::vector<int>& cell) const {
     const auto& x = m_.nodes;
-    if (dim_ == 2) {
+    if (m_.dim == 2) {
       double area2 = 0;
       for (std::size_t a = 0; a < cell.size(); ++a) {
         const Eigen::Vector3d &p = x[cell[a]], &q = x[cell[(a + 1) % cell.size()]];
@@ -235,7 +242,7 @@ class Reader {
 
   /// Physical groups below the bodies' dimension name node sets.
   void read_node_sets() {
-    for (int dim = dim_ - 1; dim >= 0; --dim) {
+    for (int dim = m_.dim - 1; dim >= 0; --dim) {
       const std::string kind = physical(dim);
       gmsh::vectorpair groups;
       gmsh::model::getPhysicalGroups(groups, dim);
@@ -255,7 +262,7 @@ class Reader {
             for (std::size_t tag_of_node : nodes[t]) {
               const auto it = index_.find(tag_of_node);
               if (it == index_.end())
-                fail(kind + " '" + name + "' has a node on no cell of a body: it must lie on the boundary of a " + physical(dim_));
+                fail(kind + " '" + name + "' has a node on no cell of a body: it must lie on the boundary of a " + physical(m_.dim));
               if (std::find(set.begin(), set.end(), it->second) == set.end()) set.push_back(it->second);
             }
           }
@@ -287,8 +294,8 @@ class Reader {
   /// The facets of a cell of `k` nodes by local index, ordered counter-clockwise seen from
   /// outside a positively oriented cell.
   std::vector<std::vector<int>> facets_of(std::size_t k) const {
-    if (dim_ == 2 && k == 3) return {{0, 1}, {1, 2}, {2, 0}};
-    if (dim_ == 2) return {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
+    if (m_.dim == 2 && k == 3) return {{0, 1}, {1, 2}, {2, 0}};
+    if (m_.dim == 2) return {{0, 1}, {1, 2}, {2, 3}, {3, 0}};
     if (k == 4) return {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     return {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
   }
@@ -296,7 +303,6 @@ class Reader {
   const MeshParams& p_;
   const std::string where_;
   Mesh m_;
-  int dim_ = 2;  // of the bodies: 2 (Physical Surfaces) or 3 (Physical Volumes)
   std::map<std::size_t, int> index_;
 };
 
@@ -305,8 +311,7 @@ class Reader {
 int read_gmsh_dimension(const MeshParams& p) {
   GmshSession session;
   try {
-    for (const auto& [name, value] : p.parameters) gmsh::onelab::setNumber(name, {value});
-    gmsh::open(p.file);
+    open_with_parameters(p);
     return top_dimension();
   } catch (const std::string& e) {
     throw InputError(p.file + ": " + GmshSession::last_error(e));

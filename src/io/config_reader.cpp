@@ -176,6 +176,15 @@ class Reader {
     return out;
   }
 
+  /// A direction: `dim` numbers, not all zero, made unit.
+  std::array<double, 3> direction(const Setting& g, const char* name, int dim) const {
+    std::array<double, 3> v = coordinates(g, name, dim);
+    const double len = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+    check(len > 1e-12, g[name], "must be a nonzero vector", len);
+    for (double& x : v) x /= len;
+    return v;
+  }
+
   /// A string that must be one of `choices`; returns its index.
   int choice(const Setting& g, const char* name, std::initializer_list<const char*> choices,
              int fallback) const {
@@ -525,21 +534,13 @@ InterfaceParams read_interface(const Reader& r, const Setting& in, int dim) {
   p.boundary = r.text(in, "boundary", "", true);
   const int facings = in.exists("normal") + in.exists("circle") + in.exists("opposite");
   if (facings > 1) r.fail(in, "give one of 'normal' (a rigid line), 'circle' (a rigid circle) or 'opposite' (another body)");
-  if (in.exists("normal")) {
-    p.normal = r.coordinates(in, "normal", dim);
-    const double len = std::sqrt(p.normal[0] * p.normal[0] + p.normal[1] * p.normal[1] + p.normal[2] * p.normal[2]);
-    r.check(len > 1e-12, in["normal"], "must be a nonzero vector", len);
-    p.normal = {p.normal[0] / len, p.normal[1] / len, p.normal[2] / len};
-  }
+  if (in.exists("normal")) p.normal = r.direction(in, "normal", dim);
   if (in.exists("circle")) {
     const Setting& c = r.group(in, "circle");
     r.only(c, {"centre", "radius", "side", "axis"});
     if (c.exists("axis")) {
       if (dim == 2) r.fail(c["axis"], "a circle in 2D is a cylinder along z already: leave 'axis' out (3D: a cylinder's axis)");
-      p.axis = r.coordinates(c, "axis", 3);
-      const double len = std::sqrt(p.axis[0] * p.axis[0] + p.axis[1] * p.axis[1] + p.axis[2] * p.axis[2]);
-      r.check(len > 1e-12, c["axis"], "must be a nonzero vector", len);
-      p.axis = {p.axis[0] / len, p.axis[1] / len, p.axis[2] / len};
+      p.axis = r.direction(c, "axis", 3);
     }
     p.facing = Facing::Circle;
     p.centre = r.coordinates(c, "centre", dim);

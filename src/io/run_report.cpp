@@ -44,8 +44,8 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   for (std::size_t k = 0; k < cfg.interfaces.size() && k < r.pairs_per_interface.size(); ++k) {
     const InterfaceParams& p = cfg.interfaces[k];
     out << (k ? ";" : "") << " " << p.path << " '" << p.boundary << "' against "
-        << (p.facing == Facing::Line ? (solid ? "a rigid plane" : "a rigid line")
-            : p.facing == Facing::Circle ? (solid ? "a rigid sphere" : "a rigid circle")
+        << (p.facing == Facing::Line     ? (solid ? "a rigid plane" : "a rigid line")
+            : p.facing == Facing::Circle ? (!solid ? "a rigid circle" : p.axis == std::array<double, 3>{} ? "a rigid sphere" : "a rigid cylinder")
                                          : "'" + p.opposite + "'")
         << " (" << r.pairs_per_interface[k] << " pairs)";
   }
@@ -92,7 +92,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   const bool rate_independent = cfg.integrator.method == Method::RateIndependent;
   out << "\nEnergy balance at T (docs/MODEL.md s3), N mm "
       << (cfg.hypothesis() == Hypothesis::Axisymmetric ? "(the whole body of revolution)"
-          : cfg.mesh.dim() == 3                        ? "(the whole body)"
+          : solid                                      ? "(the whole body)"
                                                        : "per mm of thickness")
       << "\n"
       << "  external work                  " << fmt("%.8e", e.external_work) << "\n"

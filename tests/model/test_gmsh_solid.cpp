@@ -38,6 +38,23 @@ double volume(const Mesh& m, const std::vector<int>& c) {
   return v;
 }
 
+/// A node's place, to 1e-6 mm: the same node in two meshes, whatever their numbering.
+std::array<long, 3> position_key(const Eigen::Vector3d& x) {
+  return {std::lround(1e6 * x.x()), std::lround(1e6 * x.y()), std::lround(1e6 * x.z())};
+}
+
+/// The contact pairs of `m` by their nodes' places, each place seen as Q^T x (Q: how the
+/// mesh was turned from the reference one).
+std::map<std::array<long, 3>, int> pairs_by_position(const Model& m, const Eigen::Matrix3d& Q = Eigen::Matrix3d::Identity()) {
+  std::map<std::array<long, 3>, int> at;
+  for (int i = 0; i < m.interface().size(); ++i) at[position_key(Q.transpose() * m.mesh().nodes[m.interface().pairs[i].node])] = i;
+  return at;
+}
+
+/// Euler-50 and sweeps to 1e-12 for the corner peel compared across meshes: the pairs come in
+/// another order there (another sweep order), the results agree to the tolerance.
+const std::vector<std::string> fixed_steps = {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12"};
+
 /// A body of an MSH 2.2 file made from a built-in box: shifted, its node sets named as
 /// Physical Surfaces (their boundary quads) and Physical Points (one node).
 struct MshPart {
@@ -241,25 +258,18 @@ TEST_CASE("3D pressures and tractions: a pressure or a downward traction on the 
 }
 
 TEST_CASE("gmsh 3D: a plate of gmsh hexahedra peels by one corner like the built-in box", "[gmsh][solid]") {
-  // Fixed steps and tight sweeps: the pairs come in another order (another sweep order).
-  const std::vector<std::string> exact = {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12"};
-  const Config box = test::corner_peel(4, exact);
-  const Config gmsh = test::corner_peel(4, exact, "mesh = { file = \"" + fixtures + "plate_hex.geo\"; parameters = { n = 4.0; }; };");
+  const Config box = test::corner_peel(4, fixed_steps);
+  const Config gmsh = test::corner_peel(4, fixed_steps, "mesh = { file = \"" + fixtures + "plate_hex.geo\"; parameters = { n = 4.0; }; };");
   const RunResult a = Simulation(box).run(), b = Simulation(gmsh).run();
   const Model ma = test::make_model(box), mb = test::make_model(gmsh);
   REQUIRE(mb.mesh().body_names == std::vector<std::string>{"plate"});
   REQUIRE(ma.contact_nodes() == mb.contact_nodes());
   REQUIRE(a.snapshots.size() == b.snapshots.size());
-  // The same contact node by its position (to 1e-9 mm), whatever gmsh's numbering.
-  const auto key = [](const Eigen::Vector3d& x) {
-    return std::array<long, 3>{std::lround(1e9 * x.x()), std::lround(1e9 * x.y()), std::lround(1e9 * x.z())};
-  };
-  std::map<std::array<long, 3>, int> pair_at;
-  for (int i = 0; i < mb.interface().size(); ++i) pair_at[key(mb.mesh().nodes[mb.interface().pairs[i].node])] = i;
+  const auto pair_at = pairs_by_position(mb);
   const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
   CHECK(sa.beta.minCoeff() < 0.5);  // the peel has begun
   for (int i = 0; i < ma.interface().size(); ++i) {
-    const int j = pair_at.at(key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    const int j = pair_at.at(position_key(ma.mesh().nodes[ma.interface().pairs[i].node]));
     CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
     CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * sa.Rbar.cwiseAbs().maxCoeff());
   }
@@ -289,33 +299,27 @@ TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis 
   const double F = 200;  // N: the plate's corner region debonds, the rest holds
   const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
   const Eigen::Vector3d n = Q.col(1), lift = F * Q.col(1);  // the base's normal, the force on the corner
-  std::ostringstream turned;
-  turned << std::setprecision(17) << "mesh = { file = \"" << turned_plate(4, Q) << "\"; };\n"
-         << "material = { E = 6.9e4; nu = 0.333; };\n"
-         << "interface = { boundary = \"bottom\"; normal = [" << n.x() << ", " << n.y() << ", " << n.z()
-         << "]; Cn = 2.0e5; Ct = 2.0e5; w = 1.0e-6; alpha = 1.0; mu = 0.2; beta0 = 1.0; };\n"
-         << "loads = ( { node_set = \"top_left_back\"; type = \"force\"; component = \"x\"; value = " << lift.x() << "; },\n"
-         << "          { node_set = \"top_left_back\"; type = \"force\"; component = \"y\"; value = " << lift.y() << "; },\n"
-         << "          { node_set = \"top_left_back\"; type = \"force\"; component = \"z\"; value = " << lift.z() << "; } );\n"
-         << "time = { T = 5.0; steps = 50; };\nintegrator = { method = \"euler\"; };\nsolver = { active_set = false; tolerance = 1e-12; };\n";
-  const Config a_cfg = test::corner_peel(4, {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12",
-                                             "loads=({node_set=\"top_left_back\"; type=\"force\"; component=\"y\"; value=" +
-                                                 std::to_string(F) + ";})"});
-  const Config b_cfg = test::config_from_text(turned.str());
+  std::ostringstream normal, loads;
+  normal << std::setprecision(17) << "interface.normal=[" << n.x() << ", " << n.y() << ", " << n.z() << "]";
+  loads << std::setprecision(17) << "loads=(";
+  for (int k = 0; k < 3; ++k)
+    loads << (k ? ", " : "") << "{node_set=\"top_left_back\"; type=\"force\"; component=\"" << "xyz"[k] << "\"; value=" << lift[k] << ";}";
+  loads << ")";
+  std::vector<std::string> a_settings = fixed_steps, b_settings = fixed_steps;
+  a_settings.push_back("loads=({node_set=\"top_left_back\"; type=\"force\"; component=\"y\"; value=" + std::to_string(F) + ";})");
+  b_settings.insert(b_settings.end(), {normal.str(), loads.str()});
+  const Config a_cfg = test::corner_peel(4, a_settings);
+  const Config b_cfg = test::corner_peel(4, b_settings, "mesh = { file = \"" + turned_plate(4, Q) + "\"; };");
   const RunResult a = Simulation(a_cfg).run(), b = Simulation(b_cfg).run();
   const Model ma = test::make_model(a_cfg), mb = test::make_model(b_cfg);
   REQUIRE(ma.contact_nodes() == mb.contact_nodes());
-  const auto key = [](const Eigen::Vector3d& x) {
-    return std::array<long, 3>{std::lround(1e6 * x.x()), std::lround(1e6 * x.y()), std::lround(1e6 * x.z())};
-  };
-  std::map<std::array<long, 3>, int> pair_at;  // the turned plate's pairs by their place before turning
-  for (int j = 0; j < mb.interface().size(); ++j) pair_at[key(Q.transpose() * mb.mesh().nodes[mb.interface().pairs[j].node])] = j;
+  const auto pair_at = pairs_by_position(mb, Q);  // the turned plate's pairs by their place before turning
   const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
   REQUIRE(sa.beta.minCoeff() < 0.5);
   REQUIRE(sa.beta.maxCoeff() > 0.5);
   const double R = sa.Rbar.cwiseAbs().maxCoeff(), u = sa.u.cwiseAbs().maxCoeff();
   for (int i = 0; i < ma.interface().size(); ++i) {
-    const int j = pair_at.at(key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    const int j = pair_at.at(position_key(ma.mesh().nodes[ma.interface().pairs[i].node]));
     CHECK((mb.interface().pairs[j].frame.n - n).norm() <= 1e-14);
     CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
     CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * R);
@@ -335,8 +339,7 @@ TEST_CASE("3D body-body interface: a plate peeled from a held elastic block beha
                                      {{plate_box(4), Eigen::Vector3d::Zero(), "plate", {{"bottom", "bottom"}}, {{"top_left_back", "top_left_back"}}},
                                       {plate_box(4), Eigen::Vector3d(0, -1, 0), "block", {{"block_top", "top"}}, {}}},
                                      Eigen::Matrix3d::Identity());
-  const std::vector<std::string> exact = {"integrator={method=\"euler\";}", "time.steps=50", "solver.tolerance=1e-12"};
-  const Config rigid = test::corner_peel(4, exact);
+  const Config rigid = test::corner_peel(4, fixed_steps);
   std::ostringstream loads;
   loads << std::setprecision(17) << "loads = ( { node_set = \"top_left_back\"; type = \"displacement\"; component = \"y\"; value = "
         << 0.15 + d.y() << "; }";
@@ -354,23 +357,18 @@ solver = { active_set = false; tolerance = 1e-12; };
   const RunResult a = Simulation(rigid).run(), b = Simulation(two).run();
   const Model ma = test::make_model(rigid), mb = test::make_model(two);
   REQUIRE(mb.contact_nodes() == ma.contact_nodes());
-  const auto key = [](const Eigen::Vector3d& x) {
-    return std::array<long, 3>{std::lround(1e6 * x.x()), std::lround(1e6 * x.y()), std::lround(1e6 * x.z())};
-  };
-  std::map<std::array<long, 3>, int> pair_at;
-  for (int j = 0; j < mb.interface().size(); ++j) {
-    const ContactPair& c = mb.interface().pairs[j];
+  for (const ContactPair& c : mb.interface().pairs) {
     CHECK(c.opposite >= 0);
     CHECK((mb.mesh().nodes[c.node] - mb.mesh().nodes[c.opposite]).norm() <= 1e-12);
     CHECK((c.frame.n - Eigen::Vector3d::UnitY()).norm() <= 1e-12);
     CHECK(c.g0 == 0.0);
-    pair_at[key(mb.mesh().nodes[c.node])] = j;
   }
+  const auto pair_at = pairs_by_position(mb);
   const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
   REQUIRE(sa.beta.minCoeff() < 0.5);
   const double R = sa.Rbar.cwiseAbs().maxCoeff(), u = sa.u.cwiseAbs().maxCoeff();
   for (int i = 0; i < ma.interface().size(); ++i) {
-    const int j = pair_at.at(key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    const int j = pair_at.at(position_key(ma.mesh().nodes[ma.interface().pairs[i].node]));
     CHECK(mb.interface().pairs[j].measure == Approx(ma.interface().pairs[i].measure).epsilon(1e-14));
     CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
     for (int k = 0; k < 3; ++k) {
@@ -407,11 +405,7 @@ output = { times = [1.0, 2.0]; };
   const RunResult r2 = Simulation(plane).run(), r3 = Simulation(slab).run();
   const Model m2 = test::make_model(plane), m3 = test::make_model(slab);
   REQUIRE(m3.contact_nodes() == 2 * m2.contact_nodes());
-  std::map<std::pair<long, long>, int> pair_at;  // the 2D pair at (x, y)
-  for (int i = 0; i < m2.interface().size(); ++i) {
-    const Eigen::Vector3d x = m2.mesh().nodes[m2.interface().pairs[i].node];
-    pair_at[{std::lround(1e6 * x.x()), std::lround(1e6 * x.y())}] = i;
-  }
+  const auto pair_at = pairs_by_position(m2);  // the 2D pair at (x, y, 0)
   REQUIRE(r2.snapshots.size() == r3.snapshots.size());
   CHECK(r2.snapshots.back().beta.minCoeff() < 0.5);  // the front has started
   for (std::size_t s = 0; s < r2.snapshots.size(); ++s) {
@@ -421,7 +415,7 @@ output = { times = [1.0, 2.0]; };
     for (int j = 0; j < m3.contact_nodes(); ++j) {
       const ContactPair& c = m3.interface().pairs[j];
       const Eigen::Vector3d x = m3.mesh().nodes[c.node];
-      const int i = pair_at.at({std::lround(1e6 * x.x()), std::lround(1e6 * x.y())});
+      const int i = pair_at.at(position_key(Eigen::Vector3d(x.x(), x.y(), 0.0)));
       const ContactPair& c2 = m2.interface().pairs[i];
       CHECK((c.frame.n - c2.frame.n).norm() <= 1e-12);  // radial, off the axis
       CHECK(c.g0 == Approx(c2.g0).margin(1e-12));
