@@ -50,6 +50,7 @@ std::string Config::fingerprint() const {
     h("body.name", b.name)("material.orthotropic", m.orthotropic)("material.E", m.E)("material.nu", m.nu);
     h("material.E1", m.E1)("material.E2", m.E2)("material.E3", m.E3)("material.nu12", m.nu12)("material.nu13", m.nu13);
     h("material.nu23", m.nu23)("material.G12", m.G12)("material.G13", m.G13)("material.G23", m.G23)("material.angle", m.angle)("material.hypothesis", double(m.hypothesis));
+    h.list("material.axis3", m.axis3);
   }
   for (const InterfaceParams& p : interfaces) {
     h("interface.boundary", p.boundary)("interface.facing", double(p.facing)).list("interface.normal", p.normal);

@@ -32,13 +32,11 @@ Eigen::Matrix4d isotropic_stiffness(double E, double nu) {
 }
 
 /// An orthotropic stiffness in the global Voigt order (xx, yy, zz, yz, xz, xy), its material
-/// axes 1, 2 turned by `angle` about z: C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs (engineering
+/// axes the columns of R (material_axes): C'_ijkl = R_ip R_jq R_kr R_ls C_pqrs (engineering
 /// shear strains: no factors).
 Eigen::Matrix<double, 6, 6> rotated_stiffness(const MaterialParams& p) {
   const Eigen::Matrix<double, 6, 6> C = compliance_in_material_axes(p).inverse();
-  const double a = p.angle * M_PI / 180.0;
-  Eigen::Matrix3d R;
-  R << std::cos(a), -std::sin(a), 0, std::sin(a), std::cos(a), 0, 0, 0, 1;
+  const Eigen::Matrix3d R = material_axes(p);
   Eigen::Matrix<double, 6, 6> turned;
   for (int A = 0; A < 6; ++A)
     for (int B = 0; B < 6; ++B) {
@@ -63,6 +61,19 @@ Eigen::Matrix4d plane_block(const Eigen::Matrix<double, 6, 6>& C) {
 }
 
 }  // namespace
+
+Eigen::Matrix3d material_axes(const MaterialParams& p) {
+  const Eigen::Vector3d n(p.axis3[0], p.axis3[1], p.axis3[2]);
+  // Axis 1 at angle 0: x projected on the plane normal to axis 3 (y when axis 3 is along x).
+  const Eigen::Vector3d x = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
+  const Eigen::Vector3d e1 = (x - x.dot(n) * n).normalized(), e2 = n.cross(e1);
+  const double a = p.angle * M_PI / 180.0;
+  Eigen::Matrix3d R;
+  R.col(0) = std::cos(a) * e1 + std::sin(a) * e2;
+  R.col(1) = -std::sin(a) * e1 + std::cos(a) * e2;
+  R.col(2) = n;
+  return R;
+}
 
 Eigen::Matrix<double, 6, 6> compliance_in_material_axes(const MaterialParams& p) {
   double E1 = p.E, E2 = p.E, E3 = p.E, nu12 = p.nu, nu13 = p.nu, nu23 = p.nu, G12 = p.E / (2 * (1 + p.nu));

@@ -473,7 +473,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
     return p;
   }
-  r.only(mat, {"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23", "angle", "hypothesis"});
+  r.only(mat, {"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23", "angle", "axis3", "hypothesis"});
   for (auto [name, v] : {std::pair<const char*, double*>{"E1", &p.E1}, {"E2", &p.E2}, {"E3", &p.E3}, {"G12", &p.G12}}) {
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);
@@ -490,6 +490,9 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   p.nu13 = r.number(mat, "nu13");
   p.nu23 = r.number(mat, "nu23");
   p.angle = r.number(mat, "angle", 0.0);
+  if (dim == 2 && mat.exists("axis3"))
+    r.fail(mat["axis3"], "turns the material axes of a 3D body: a plane body's axis 3 is z, leave it out");
+  if (mat.exists("axis3")) p.axis3 = r.direction(mat, "axis3", 3);
   // A positive definite compliance (each nu_ij^2 < E_i / E_j, and the determinant of the
   // normal block positive): otherwise no strain energy is positive.
   const double n21 = p.nu12 * p.E2 / p.E1, n31 = p.nu13 * p.E3 / p.E1, n32 = p.nu23 * p.E3 / p.E2;

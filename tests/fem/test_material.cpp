@@ -138,53 +138,66 @@ TEST_CASE("orthotropic out-of-plane coupling: nu13 couples axis 1 to 3, nu23 axi
 }
 
 TEST_CASE("3D orthotropic law: uniaxial stress along the turned axes gives the engineering constants, the "
-          "shears G12, G13, G23, the plane block is the plane-strain law",
+          "shears G12, G13, G23, the plane block is the plane-strain law, for axis 3 along z, y, x or oblique",
           "[material]") {
   const double E1 = 1.4e5, E2 = 1e4, E3 = 9e3, nu12 = 0.3, nu13 = 0.25, nu23 = 0.45, G12 = 5e3, G13 = 4.5e3, G23 = 3.4e3;
-  for (double angle : {0.0, 30.0, 117.0}) {
-    MaterialParams p = orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, angle, Hypothesis::PlaneStrain);
-    p.G13 = G13, p.G23 = G23;
-    const Material m(p);
-    const Eigen::Matrix<double, 6, 6> S = m.D3().inverse();
-    CHECK((m.D3() - m.D3().transpose()).cwiseAbs().maxCoeff() <= 1e-10 * m.D3().cwiseAbs().maxCoeff());
-    CHECK(m.D3().selfadjointView<Eigen::Lower>().eigenvalues().minCoeff() > 0);
-    // The material axes in the global frame: 1 = (c, s, 0), 2 = (-s, c, 0), 3 = z.
-    const double a = angle * M_PI / 180;
-    const Eigen::Vector3d axis[3] = {{std::cos(a), std::sin(a), 0}, {-std::sin(a), std::cos(a), 0}, {0, 0, 1}};
-    const auto voigt_stress = [](const Eigen::Matrix3d& t) {
-      Voigt3 v;
-      v << t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1);
-      return v;
-    };
-    const auto strain_tensor = [](const Voigt3& e) {
-      Eigen::Matrix3d t;
-      t << e[0], e[5] / 2, e[4] / 2, e[5] / 2, e[1], e[3] / 2, e[4] / 2, e[3] / 2, e[2];
-      return t;
-    };
-    const double E[3] = {E1, E2, E3};
-    const double nu[3][3] = {{0, nu12, nu13}, {nu12 * E2 / E1, 0, nu23}, {nu13 * E3 / E1, nu23 * E3 / E2, 0}};  // nu_ij
-    for (int i = 0; i < 3; ++i) {  // a uniaxial stress of 100 MPa along axis i
-      const Eigen::Matrix3d eps = strain_tensor(S * voigt_stress(100 * axis[i] * axis[i].transpose()));
-      INFO("angle " << angle << ", stress along axis " << i + 1);
-      CHECK(axis[i].dot(eps * axis[i]) == Approx(100 / E[i]).epsilon(1e-10));
-      for (int j = 0; j < 3; ++j)
-        if (j != i) {
-          CHECK(axis[j].dot(eps * axis[j]) == Approx(-nu[i][j] * 100 / E[i]).epsilon(1e-10));
-          CHECK(std::abs(axis[i].dot(eps * axis[j])) <= 1e-12 * 100 / E[i]);  // no shear
-        }
-    }
-    const double G[3][3] = {{0, G12, G13}, {G12, 0, G23}, {G13, G23, 0}};
-    for (int i = 0; i < 3; ++i)  // a pure shear of 10 MPa in the axes' plane i-j: gamma = tau / G_ij
-      for (int j = i + 1; j < 3; ++j) {
-        const Eigen::Matrix3d tau = 10 * (axis[i] * axis[j].transpose() + axis[j] * axis[i].transpose());
-        const Eigen::Matrix3d eps = strain_tensor(S * voigt_stress(tau));
-        CHECK(2 * axis[i].dot(eps * axis[j]) == Approx(10 / G[i][j]).epsilon(1e-10));
+  // axis3 and the reference axes (1, 2) at angle 0 (README "3D": x projected on the plane
+  // normal to axis 3, y when axis 3 is along x; axis 2 = axis 3 x axis 1).
+  const Eigen::Vector3d oblique = Eigen::Vector3d(1, 2, 3).normalized();
+  const Eigen::Vector3d oblique_1 = (Eigen::Vector3d::UnitX() - oblique.x() * oblique).normalized();
+  const std::array<std::array<Eigen::Vector3d, 3>, 4> frames{{
+      {{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}},  // the default: the plane axes turned about z
+      {{{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}},  // a plate in x-z (the corner peel's)
+      {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
+      {{oblique, oblique_1, oblique.cross(oblique_1)}},
+  }};
+  for (const auto& frame : frames)
+    for (double angle : {0.0, 30.0, 117.0}) {
+      MaterialParams p = orthotropic(E1, E2, E3, nu12, nu13, nu23, G12, angle, Hypothesis::PlaneStrain);
+      p.G13 = G13, p.G23 = G23;
+      p.axis3 = {frame[0].x(), frame[0].y(), frame[0].z()};
+      const Material m(p);
+      const Eigen::Matrix<double, 6, 6> S = m.D3().inverse();
+      CHECK((m.D3() - m.D3().transpose()).cwiseAbs().maxCoeff() <= 1e-10 * m.D3().cwiseAbs().maxCoeff());
+      CHECK(m.D3().selfadjointView<Eigen::Lower>().eigenvalues().minCoeff() > 0);
+      // The material axes in the global frame: 1 = c r1 + s r2, 2 = -s r1 + c r2, 3 = axis3.
+      const double a = angle * M_PI / 180;
+      const Eigen::Vector3d axis[3] = {std::cos(a) * frame[1] + std::sin(a) * frame[2],
+                                       -std::sin(a) * frame[1] + std::cos(a) * frame[2], frame[0]};
+      const auto voigt_stress = [](const Eigen::Matrix3d& t) {
+        Voigt3 v;
+        v << t(0, 0), t(1, 1), t(2, 2), t(1, 2), t(0, 2), t(0, 1);
+        return v;
+      };
+      const auto strain_tensor = [](const Voigt3& e) {
+        Eigen::Matrix3d t;
+        t << e[0], e[5] / 2, e[4] / 2, e[5] / 2, e[1], e[3] / 2, e[4] / 2, e[3] / 2, e[2];
+        return t;
+      };
+      const double E[3] = {E1, E2, E3};
+      const double nu[3][3] = {{0, nu12, nu13}, {nu12 * E2 / E1, 0, nu23}, {nu13 * E3 / E1, nu23 * E3 / E2, 0}};  // nu_ij
+      for (int i = 0; i < 3; ++i) {  // a uniaxial stress of 100 MPa along axis i
+        const Eigen::Matrix3d eps = strain_tensor(S * voigt_stress(100 * axis[i] * axis[i].transpose()));
+        INFO("axis3 " << frame[0].transpose() << ", angle " << angle << ", stress along axis " << i + 1);
+        CHECK(axis[i].dot(eps * axis[i]) == Approx(100 / E[i]).epsilon(1e-10));
+        for (int j = 0; j < 3; ++j)
+          if (j != i) {
+            CHECK(axis[j].dot(eps * axis[j]) == Approx(-nu[i][j] * 100 / E[i]).epsilon(1e-10));
+            CHECK(std::abs(axis[i].dot(eps * axis[j])) <= 1e-12 * 100 / E[i]);  // no shear
+          }
       }
-    // The plane-strain law is the 3D law's block of xx, yy, xy, zz.
-    const int plane[4] = {0, 1, 5, 2};
-    for (int A = 0; A < 4; ++A)
-      for (int B = 0; B < 4; ++B) CHECK(m.D()(A, B) == Approx(m.D3()(plane[A], plane[B])).epsilon(1e-12).margin(1e-9));
-  }
+      const double G[3][3] = {{0, G12, G13}, {G12, 0, G23}, {G13, G23, 0}};
+      for (int i = 0; i < 3; ++i)  // a pure shear of 10 MPa in the axes' plane i-j: gamma = tau / G_ij
+        for (int j = i + 1; j < 3; ++j) {
+          const Eigen::Matrix3d tau = 10 * (axis[i] * axis[j].transpose() + axis[j] * axis[i].transpose());
+          const Eigen::Matrix3d eps = strain_tensor(S * voigt_stress(tau));
+          CHECK(2 * axis[i].dot(eps * axis[j]) == Approx(10 / G[i][j]).epsilon(1e-10));
+        }
+      // The plane-strain law is the 3D law's block of xx, yy, xy, zz.
+      const int plane[4] = {0, 1, 5, 2};
+      for (int A = 0; A < 4; ++A)
+        for (int B = 0; B < 4; ++B) CHECK(m.D()(A, B) == Approx(m.D3()(plane[A], plane[B])).epsilon(1e-12).margin(1e-9));
+    }
 }
 
 TEST_CASE("patch test: a distorted patch carries uniform strain exactly, plane and axisymmetric", "[material]") {

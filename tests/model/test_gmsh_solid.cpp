@@ -291,8 +291,17 @@ TEST_CASE("gmsh 3D: a bad volume mesh is refused, naming the file and the physic
           "Physical Surface 'cube' has the name of another physical group");
 }
 
+/// An orthotropic ply (3D) with axis 3 along `axis3` and axis 1 at `angle` degrees from its
+/// reference axis (README "3D"), as a config override.
+std::string ply(const Eigen::Vector3d& axis3, double angle) {
+  std::ostringstream m;
+  m << std::setprecision(17) << "material={E1=1.4e5; E2=1.0e4; E3=1.0e4; nu12=0.3; nu13=0.3; nu23=0.45; G12=5.0e3; "
+    << "G13=5.0e3; G23=3.4e3; angle=" << angle << "; axis3=[" << axis3.x() << ", " << axis3.y() << ", " << axis3.z() << "];}";
+  return m.str();
+}
+
 TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis gives the same beta, "
-          "normal reactions and slip magnitudes",
+          "normal reactions and slip magnitudes, isotropic or an orthotropic ply turned alike",
           "[gmsh][solid]") {
   // The corner pulled by a force (components add up; prescribed components would hold the
   // others at 0).
@@ -308,6 +317,17 @@ TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis 
   std::vector<std::string> a_settings = fixed_steps, b_settings = fixed_steps;
   a_settings.push_back("loads=({node_set=\"top_left_back\"; type=\"force\"; component=\"y\"; value=" + std::to_string(F) + ";})");
   b_settings.insert(b_settings.end(), {normal.str(), loads.str()});
+  if (GENERATE(false, true)) {
+    // The ply in the plate's plane: axis 3 along y, axis 1 at 30 degrees from x, (c, 0, -s).
+    // Turned: axis 3 along Q y, axis 1 along Q (c, 0, -s), at the angle from the reference
+    // axis of Q y (x projected on its plane; axis 2 = axis 3 x axis 1).
+    const double a = 30 * M_PI / 180;
+    const Eigen::Vector3d axis1 = Q * Eigen::Vector3d(std::cos(a), 0, -std::sin(a));
+    const Eigen::Vector3d r1 = (Eigen::Vector3d::UnitX() - n.x() * n).normalized(), r2 = n.cross(r1);
+    a_settings.push_back(ply(Eigen::Vector3d::UnitY(), 30));
+    REQUIRE(std::abs(n.x()) < 0.9);  // x is the reference of Q y
+    b_settings.push_back(ply(n, std::atan2(axis1.dot(r2), axis1.dot(r1)) * 180 / M_PI));
+  }
   const Config a_cfg = test::corner_peel(4, a_settings);
   const Config b_cfg = test::corner_peel(4, b_settings, "mesh = { file = \"" + turned_plate(4, Q) + "\"; };");
   const RunResult a = Simulation(a_cfg).run(), b = Simulation(b_cfg).run();

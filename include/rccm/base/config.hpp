@@ -45,7 +45,8 @@ struct MeshParams {
 
 /// Linear elasticity of one body (docs/MODEL.md s1): isotropic (E, nu) or orthotropic with
 /// material axes 1, 2 in the x-y plane (axis 1 at `angle` from x) and 3 along z (the hoop
-/// direction of an axisymmetric body).
+/// direction of an axisymmetric body); in 3D axis 3 along any direction `axis3` (a ply's
+/// normal), axes 1, 2 turned by `angle` about it (material.cpp: material_axes).
 struct MaterialParams {
   std::string path = "material";  // its section in the config, for messages
   bool orthotropic = false;
@@ -55,7 +56,8 @@ struct MaterialParams {
   double nu12 = 0.0, nu13 = 0.0, nu23 = 0.0;  // nu_ij = -strain_j / strain_i under stress along i
   double G12 = 0.0;                           // in-plane shear modulus, MPa
   double G13 = 0.0, G23 = 0.0;                // out-of-plane shear moduli, MPa (3D; 0: not given)
-  double angle = 0.0;                         // degrees, from x to axis 1, counter-clockwise
+  double angle = 0.0;                         // degrees, from x to axis 1, counter-clockwise (about axis3)
+  std::array<double, 3> axis3{0.0, 0.0, 1.0};  // 3D: material axis 3, unit (2D: z)
   Hypothesis hypothesis = Hypothesis::PlaneStrain;
 };
 

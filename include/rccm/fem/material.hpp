@@ -27,8 +27,8 @@ class Material {
 
   Hypothesis hypothesis() const { return hypothesis_; }
 
-  /// The 3D law, sigma = D3 eps in the Voigt order of Voigt3 (orthotropic: its axes turned
-  /// by the angle about z).
+  /// The 3D law, sigma = D3 eps in the Voigt order of Voigt3 (orthotropic: in its
+  /// material_axes).
   const Eigen::Matrix<double, 6, 6>& D3() const { return D3_; }
 
  private:
@@ -36,6 +36,11 @@ class Material {
   Eigen::Matrix4d D_, S_;  // S_: the compliance of the (xx, yy, xy, zz) block of the 3D law
   Eigen::Matrix<double, 6, 6> D3_ = Eigen::Matrix<double, 6, 6>::Zero();
 };
+
+/// The material axes 1, 2, 3 of `p` as the columns of a rotation: axis 3 along p.axis3 (z
+/// in 2D), axis 1 at p.angle from the reference axis (x projected on the plane normal to
+/// axis 3; y when axis 3 is within 26 degrees of x), turning towards axis 2 = axis 3 x axis 1.
+Eigen::Matrix3d material_axes(const MaterialParams& p);
 
 /// The compliance of `p` in its material axes (Voigt 11, 22, 33, 23, 13, 12, engineering
 /// shear), MPa^-1. The out-of-plane shears (G23, G13) decouple from the plane: a plane body
