@@ -1,6 +1,7 @@
 #include "rccm/interface/interface.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/la/bisection_order.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -204,6 +205,17 @@ class PairBuilder {
   std::vector<Eigen::Vector3d> outward_, outward_opposite_;
 };
 
+/// A 3D interface's pairs in recursive bisection order of their nodes (la/bisection_order.hpp:
+/// the compressed W0 of a surface keeps lower ranks); a line (2D) keeps its order.
+std::vector<ContactPair> in_space_order(std::vector<ContactPair> pairs, const Mesh& mesh) {
+  if (mesh.dim != 3) return pairs;
+  std::vector<Eigen::Vector3d> x;
+  for (const ContactPair& c : pairs) x.push_back(mesh.nodes[c.node]);
+  std::vector<ContactPair> ordered;
+  for (int i : bisection_order(x)) ordered.push_back(pairs[i]);
+  return ordered;
+}
+
 }  // namespace
 
 Interface make_interface(const Mesh& mesh, const Config& cfg) {
@@ -212,7 +224,7 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
   std::vector<int> owner(mesh.num_nodes(), -1);  // the interface of each contact node
   for (const InterfaceParams& p : cfg.interfaces) {
     const int law = static_cast<int>(I.laws.size());
-    for (const ContactPair& c : PairBuilder(mesh, cfg, p, law).build()) {
+    for (const ContactPair& c : in_space_order(PairBuilder(mesh, cfg, p, law).build(), mesh)) {
       for (int node : {c.node, c.opposite})
         if (node >= 0 && owner[node] >= 0)
           throw InputError(cfg.where(p.path + ".boundary") + ": node " + point(mesh.nodes[node], mesh.dim) + " is on " +

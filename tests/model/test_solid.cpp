@@ -14,6 +14,7 @@
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <functional>
 #include <iomanip>
 #include <map>
 #include <sstream>
@@ -148,6 +149,28 @@ output = { times = [2.143, 3.143, 3.571]; };
 }
 
 // The corner lifted 0.03 mm/s for 5 s, by sweeps (the 3D exact step costs more here: README).
+TEST_CASE("a 3D interface lists its pairs in bisection order: every bisection of the pairs' range is a "
+          "compact patch (the compressed W0's clusters), not a strip of rows",
+          "[solid]") {
+  const Model model = test::make_model(test::corner_peel(8));  // 9 x 9 contact nodes in x-z, listed row by row
+  const auto node_of = [&](int i) -> const Eigen::Vector3d& { return model.mesh().nodes[model.interface().pairs[i].node]; };
+  int patches = 0;
+  const std::function<void(int, int)> bisect = [&](int begin, int end) {
+    if (end - begin < 8) return;
+    Eigen::Vector3d lo = node_of(begin), hi = lo;
+    for (int i = begin; i < end; ++i) lo = lo.cwiseMin(node_of(i)), hi = hi.cwiseMax(node_of(i));
+    const double nx = hi.x() - lo.x() + 1, nz = hi.z() - lo.z() + 1;  // nodes across, 1 mm apart
+    INFO("pairs " << begin << " to " << end << ": " << nx << " x " << nz << " nodes");
+    CHECK(std::max(nx, nz) <= 2 * std::min(nx, nz));
+    CHECK(nx * nz <= 2 * (end - begin));
+    ++patches;
+    bisect(begin, begin + (end - begin) / 2);  // the HODLR's bisection
+    bisect(begin + (end - begin) / 2, end);
+  };
+  bisect(0, model.contact_nodes());
+  CHECK(patches == 15);
+}
+
 TEST_CASE("a square plate peeled by one corner: symmetric about the diagonal, a curved front, beta never rises", "[solid]") {
   const Config cfg = test::corner_peel(8, {"output.times=[2.5]"});
   Eigen::VectorXd previous;
