@@ -14,7 +14,7 @@ namespace rccm {
 
 namespace {
 
-const char* const magic = "rccm-checkpoint-2";  // 2: no step records (history.csv holds them)
+const char* const magic = "rccm-checkpoint-3";  // 2: no step records (history.csv holds them); 3: contact_nodes
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
 class RecordWriter {
@@ -148,6 +148,9 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
   }
   w.vector("diagnostics", Eigen::Map<const Eigen::VectorXd>(c.diagnostics.data(), Eigen::Index(c.diagnostics.size())));
   w.vector("excursion", Eigen::Vector3d(c.excursion.size, c.excursion.t, c.excursion.node));
+  Eigen::VectorXd nodes(Eigen::Index(c.contact_nodes.size()));
+  for (Eigen::Index i = 0; i < nodes.size(); ++i) nodes[i] = c.contact_nodes[std::size_t(i)];
+  w.vector("contact_nodes", nodes);
   w.text("end", "");
   file.commit();
 }
@@ -158,6 +161,12 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   if (!in)
     throw InputError(path + ": no checkpoint to restart from (a run writes one every output.checkpoint_steps "
                             "steps and when it stops)");
+  std::string format;  // a checkpoint of another version of rccm is not damaged: say so
+  if ((in >> format) && format.rfind("rccm-checkpoint-", 0) == 0 && format != magic)
+    throw InputError(path + ": written by another version of rccm (format " + format + ", this version reads " + magic +
+                     "); start the run afresh with --force");
+  in.clear();
+  in.seekg(0);
   RecordReader r(in, path);
   const auto finite = [](const Eigen::VectorXd& v) { return v.allFinite(); };
   Checkpoint c;
@@ -225,6 +234,10 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   r.check(excursion.size() == 3 && finite(excursion) && excursion[2] >= -1 && excursion[2] < m,
           "excursion must be 3 numbers (size, t, contact node)");
   c.excursion = {excursion[0], excursion[1], int(excursion[2])};
+  const Eigen::VectorXd nodes = r.vector("contact_nodes");
+  r.check(nodes.size() == m && (nodes.array() >= 0).all() && (nodes.array() == nodes.array().floor()).all(),
+          "contact_nodes must be one mesh node per contact node");
+  c.contact_nodes.assign(nodes.begin(), nodes.end());
   r.text("end");
   return c;
 }

@@ -60,6 +60,13 @@ void Recorder::open(const Model& model) {
     throw InputError(checkpoint_path(cfg_.output.directory) + ": written for a model of " +
                      std::to_string(resume_->state.beta.size()) + " contact nodes, this one has " +
                      std::to_string(model.contact_nodes()) + "; start the run afresh with --force");
+  if (resume_)
+    for (int i = 0; i < model.contact_nodes(); ++i)
+      if (model.interface().pairs[i].node != resume_->contact_nodes[i])
+        throw InputError(checkpoint_path(cfg_.output.directory) + ": its contact node " + std::to_string(i) + " is mesh node " +
+                         std::to_string(resume_->contact_nodes[i]) + ", this model's is " +
+                         std::to_string(model.interface().pairs[i].node) +
+                         " (written by another version of rccm?); start the run afresh with --force");
   if (!options_.write_files) return;
   directory_ = std::make_unique<OutputDirectory>(cfg_, options_.force);
   ResumePoint point;
@@ -141,13 +148,14 @@ void Recorder::note_crawl(const AcceptedStep& a) {
 
 void Recorder::save_checkpoint() {
   Checkpoint c{cfg_.settings,           ode_->steps(),              integrator_->last_step(), ode_->committed(),
-               energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}};
+               energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}, {}};
   c.progress.snapshots = result_.snapshots;
   c.progress.peak_force = result_.peak_force;
   c.progress.peak_time = result_.peak_time;
   c.progress.solves = ode_->totals();
   c.progress.integrator = earlier_ + integrator_->stats();
   c.progress.integrator.steps = ode_->steps();  // also inside a step, before the scheme counts it
+  for (const ContactPair& pair : model_->interface().pairs) c.contact_nodes.push_back(pair.node);
   write_checkpoint(writer_->directory(), c);
 }
 

@@ -98,6 +98,28 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
   }
 }
 
+TEST_CASE("a restart from a checkpoint whose pairs are other mesh nodes is refused, the files untouched", "[restart]") {
+  // A checkpoint written by a version of rccm that listed the pairs in another order would
+  // give each pair another's beta: its contact nodes are checked against the model's.
+  const std::string dir = fs::temp_directory_path() / "rccm_restart_reordered";
+  const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
+  request_stop(0);
+  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
+  request_stop(0);
+  Checkpoint ck = read_checkpoint(dir, b1(dir, euler));
+  REQUIRE(ck.contact_nodes.size() == std::size_t(ck.state.beta.size()));
+  std::swap(ck.contact_nodes[3], ck.contact_nodes[4]);
+  write_checkpoint(dir, ck);
+  const std::size_t history = lines(dir + "/history.csv");
+  CHECK_THROWS_WITH(run(b1(dir, euler), true), Catch::Contains("checkpoint.txt: its contact node 3 is mesh node") &&
+                                                   Catch::Contains("start the run afresh with --force"));
+  CHECK(lines(dir + "/history.csv") == history);
+  std::swap(ck.contact_nodes[3], ck.contact_nodes[4]);  // as written: the restart goes on
+  write_checkpoint(dir, ck);
+  CHECK(run(b1(dir, euler), true).snapshots.back().t == 10.0);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   const std::string dir = fs::temp_directory_path() / "rccm_checkpoint_bits";
   fs::create_directories(dir);
@@ -116,6 +138,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   c.energy = {1.0 / 3, 2.0 / 3, -1e-17, 3.5, 0.1, -0.0};
   c.diagnostics = {44.95, 7};
   c.excursion = {0.25, 0.6, 2};
+  c.contact_nodes = {7, 3, 100000, 0, 5};
   c.progress.peak_force = {203.51};
   c.progress.peak_time = {0.3};
   c.progress.solves = {35443, 87000, 7, 1.25};
@@ -138,6 +161,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   CHECK(r.diagnostics == c.diagnostics);
   CHECK(r.excursion.size == 0.25);
   CHECK(r.excursion.node == 2);
+  CHECK(r.contact_nodes == c.contact_nodes);
   CHECK(r.progress.peak_force == c.progress.peak_force);
   CHECK(r.progress.solves.sweeps == c.progress.solves.sweeps);
   CHECK(r.progress.integrator.rejected == c.progress.integrator.rejected);
@@ -168,6 +192,7 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   c.state.beta = Eigen::VectorXd::Ones(2);
   c.state.Rbar = c.state.u = c.state.y = Eigen::VectorXd::Zero(4);
   c.state.status.assign(2, Status::Separated);
+  c.contact_nodes = {0, 1};
   c.progress.peak_force = c.progress.peak_time = {0.0};
   write_checkpoint(dir, c);
   CHECK(message(cfg) == "no error");
@@ -185,6 +210,10 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   CHECK_THAT(message(cfg), Catch::Contains("checkpoint.txt:8: expected 'u', found the end of the file"));
   std::ofstream(checkpoint_path(dir)) << text.substr(0, text.find("\nRbar ")) << "\nRbar 4 0x0p+0 1.5 zero";
   CHECK_THAT(message(cfg), Catch::Contains("checkpoint.txt:7: expected a number for 'Rbar', found 'zero'"));
+  // A checkpoint of an earlier version (format 2: no contact_nodes) is not called damaged.
+  std::ofstream(checkpoint_path(dir)) << "rccm-checkpoint-2" << text.substr(text.find('\n'));
+  CHECK_THAT(message(cfg), Catch::Contains("checkpoint.txt: written by another version of rccm (format rccm-checkpoint-2, "
+                                           "this version reads rccm-checkpoint-3)"));
   fs::remove_all(dir);
 }
 
@@ -199,6 +228,7 @@ TEST_CASE("a checkpoint whose state breaks the model's rules is refused, naming 
   good.state.beta = Eigen::VectorXd::Constant(3, 0.5);
   good.state.Rbar = good.state.u = good.state.y = Eigen::VectorXd::Zero(6);
   good.state.status.assign(3, Status::Separated);
+  good.contact_nodes = {4, 5, 6};
   good.progress.peak_force = {1.0};
   good.progress.peak_time = {0.5};
   const auto message = [&](const std::function<void(Checkpoint&)>& damage) {
@@ -225,6 +255,10 @@ TEST_CASE("a checkpoint whose state breaks the model's rules is refused, naming 
   CHECK_THAT(message([](Checkpoint& c) { c.step = -3; }), Catch::Contains(":3: step must be a whole number"));
   CHECK_THAT(message([](Checkpoint& c) { c.progress.snapshots = {{5.0, c.state.beta, c.state.Rbar, c.state.u, 0.0}}; }),
              Catch::Contains("a snapshot's time must be in [0, t]"));
+  CHECK_THAT(message([](Checkpoint& c) { c.contact_nodes = {4, 5}; }),
+             Catch::Contains("contact_nodes must be one mesh node per contact node"));
+  CHECK_THAT(message([](Checkpoint& c) { c.contact_nodes = {4, -5, 6}; }),
+             Catch::Contains("contact_nodes must be one mesh node per contact node"));
   fs::remove_all(dir);
 }
 

@@ -26,6 +26,8 @@ struct Checkpoint {
   BetaOde::Excursion excursion;     // of beta out of [0, previous beta] so far
   RunResult progress;     // snapshots, peak forces, solve and integrator counts (the step records
                           // are read back from history.csv)
+  std::vector<int> contact_nodes;  // the mesh node of each pair, in the pairs' order (a restart
+                                   // checks that its model lists them alike)
 };
 
 /// The checkpoint's path in a result directory.
