@@ -116,3 +116,13 @@ TEST_CASE("the circular cone reduces to the 2D wedge when the slip is planar", "
     REQUIRE(s3[2] == Approx(s2[1]).epsilon(1e-14));
   }
 }
+
+TEST_CASE("3D |v_t|: exact on Pythagorean triples, neither underflows nor overflows", "[law][3d]") {
+  for (double scale : {1.0, 1e-200, 1e200, 1e-310}) {  // 1e-310: subnormal
+    INFO("scale " << scale);
+    CHECK(tangential_norm(Eigen::Vector3d(3 * scale, -4 * scale, 7.0)) == Approx(5 * scale).epsilon(1e-15));
+    CHECK(tangential_norm(Eigen::Vector3d(-4 * scale, 3 * scale, -1.0)) == Approx(5 * scale).epsilon(1e-15));
+  }
+  CHECK(tangential_norm(Eigen::Vector3d(0.0, 0.0, 1.0)) == 0.0);
+  CHECK(tangential_norm(Eigen::Vector2d(-2.5, 1.0)) == 2.5);  // 2D: exactly |v_0|
+}

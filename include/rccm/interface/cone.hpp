@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include <algorithm>
 #include <cmath>
 
 namespace rccm {
@@ -17,11 +18,14 @@ namespace rccm {
 enum class Status { Separated, Stick, Slide };
 const char* status_name(Status s);
 
-/// |v_t|, the length of a local vector's tangential part (hypot: no underflow of the squares
-/// of tiny forces, and exactly |v_0| in 2D).
+/// |v_t|, the length of a local vector's tangential part (exactly |v_0| in 2D). In 3D the
+/// square root of the squares where they neither underflow nor overflow (std::hypot, which
+/// guards both, took 8 % of a 3D run), std::hypot beyond.
 template <class V>
 double tangential_norm(const Eigen::MatrixBase<V>& v) {
-  return v.size() == 2 ? std::abs(v[0]) : std::hypot(v[0], v[1]);
+  if (v.size() == 2) return std::abs(v[0]);
+  const double a = std::abs(v[0]), b = std::abs(v[1]), big = std::max(a, b);
+  return big > 1e-150 && big < 1e150 ? std::sqrt(a * a + b * b) : std::hypot(a, b);
 }
 
 /// Which branch of the projection `tau` falls in (paper eqs. 38a-c).
