@@ -68,18 +68,40 @@ std::vector<BenchCase> paper_cases(const std::string& config_dir) {
           {"B2 euler-210 jacobi", load_config(b2, b2_jacobi), 136.5}};
 }
 
+namespace {
+
+/// A scale case: `cfg` run over [0, T] of its own loading (the load's time function keeps its
+/// absolute times, the steps their bound), no output times, the body solved by `linear`.
+BenchCase time_window(const std::string& name, Config cfg, double T, LinearSolver linear) {
+  cfg.integrator.max_step = cfg.integrator.max_step > 0 ? cfg.integrator.max_step : cfg.time.T / 50;
+  cfg.time.T = T;
+  cfg.output.times.clear();
+  cfg.solver.linear.kind = linear;
+  return {name, cfg, 0.0};
+}
+
+}  // namespace
+
 std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, double T, LinearSolver linear) {
   std::vector<BenchCase> cases;
   for (int k = 0; k < levels; ++k) {
     const int f = 1 << k;
-    Config cfg = load_config(config_dir + "/b1.cfg",
-                             {"mesh.nx=" + std::to_string(32 * f), "mesh.ny=" + std::to_string(2 * f)});
-    // The load's time function keeps its absolute times: [0, T] of the same run.
-    cfg.integrator.max_step = cfg.integrator.max_step > 0 ? cfg.integrator.max_step : cfg.time.T / 50;
-    cfg.time.T = T;
-    cfg.output.times.clear();
-    cfg.solver.linear.kind = linear;
-    cases.push_back({"B1 x" + std::to_string(f), cfg, 0.0});
+    cases.push_back(time_window("B1 x" + std::to_string(f),
+                                load_config(config_dir + "/b1.cfg", {"mesh.nx=" + std::to_string(32 * f),
+                                                                     "mesh.ny=" + std::to_string(2 * f)}),
+                                T, linear));
+  }
+  return cases;
+}
+
+std::vector<BenchCase> corner_peel_cases(const std::string& config_dir, int levels, double T, LinearSolver linear) {
+  std::vector<BenchCase> cases;
+  const int sides[] = {8, 12, 16, 24, 32, 45, 64};
+  for (int k = 0; k < levels && k < 7; ++k) {
+    const std::string n = std::to_string(sides[k]);
+    cases.push_back(time_window("corner peel " + n + "x" + n,
+                                load_config(config_dir + "/corner-peel.cfg", {"mesh.nx=" + n, "mesh.nz=" + n, "mesh.ny=2"}),
+                                T, linear));
   }
   return cases;
 }

@@ -92,7 +92,8 @@ int main(int argc, char** argv) {
     sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
   }
   CLI::App* bench = app.add_subcommand(
-      "bench", "time B1 and B2 with each integrator against the paper's totals; --scale: the refined B1 family");
+      "bench", "time B1 and B2 with each integrator against the paper's totals; --scale: the refined B1 family; "
+               "--scale3d: the 3D corner peel family");
   std::string bench_dir = "config", bench_csv, bench_json;
   int scale_levels = 0;
   double scale_time = 1.0;
@@ -101,6 +102,9 @@ int main(int argc, char** argv) {
   bench->add_option("--json", bench_json, "also write the table as JSON");
   bench->add_option("--scale", scale_levels, "refined B1 family: levels 1x, 2x, 4x, ... cells in each direction")
       ->check(CLI::Range(0, 12));
+  int scale3d_levels = 0;
+  bench->add_option("--scale3d", scale3d_levels, "the 3D corner peel on 8, 12, 16, 24, 32, 45, 64 cells a side: the first N")
+      ->check(CLI::Range(0, 7));
   bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
       ->check(CLI::PositiveNumber);
   std::string bench_linear = "auto";
@@ -151,21 +155,25 @@ int main(int argc, char** argv) {
         rows.push_back(rccm::run_bench_case(c));
         rccm::print_bench_row(out, rows.back());
       }
-      if (scale_levels > 0) {
+      const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
+      if ((scale_levels > 0 || scale3d_levels > 0) && linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
+        throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
+      // A family of growing cases: its table, the body's solver and the growth exponents.
+      const auto family = [&](const std::string& title, const std::vector<rccm::BenchCase>& cases) {
+        if (cases.empty()) return;
         std::vector<rccm::BenchRow> scale;
-        const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
-        if (linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
-          throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
-        out << "\n# refined B1, t in [0, " << scale_time << "] s\n";
+        out << "\n# " << title << ", t in [0, " << scale_time << "] s\n";
         rccm::print_bench_header(out);
-        for (const rccm::BenchCase& c : rccm::scale_cases(bench_dir, scale_levels, scale_time, linear)) {
+        for (const rccm::BenchCase& c : cases) {
           scale.push_back(rccm::run_bench_case(c));
           rccm::print_bench_row(out, scale.back());
         }
         out << "# body's solves: " << scale.back().result.linear_solver << "\n";
         rccm::print_growth(out, scale);
         rows.insert(rows.end(), scale.begin(), scale.end());
-      }
+      };
+      family("refined B1", rccm::scale_cases(bench_dir, scale_levels, scale_time, linear));
+      family("3D corner peel", rccm::corner_peel_cases(bench_dir, scale3d_levels, scale_time, linear));
       if (root && !bench_csv.empty()) rccm::write_bench_csv(bench_csv, rows);
       if (root && !bench_json.empty()) rccm::write_bench_json(bench_json, rows);
       return 0;

@@ -33,6 +33,10 @@ std::vector<BenchCase> paper_cases(const std::string& config_dir);
 /// `linear`: the body's solver of every case (solver.linear).
 std::vector<BenchCase> scale_cases(const std::string& config_dir, int levels, double T, LinearSolver linear);
 
+/// The 3D family: the corner peel (config_dir/corner-peel.cfg) on n x 2 x n H8 cells, n = 8,
+/// 12, 16, 24, 32, 45, 64 (the first `levels`: 81 to 4225 contact nodes), over [0, T] as above.
+std::vector<BenchCase> corner_peel_cases(const std::string& config_dir, int levels, double T, LinearSolver linear);
+
 BenchRow run_bench_case(const BenchCase& c);
 
 /// The table on `out`: its header, then one row per case (us/solve: time inside the contact
