@@ -252,6 +252,7 @@ class Reader {
         std::vector<int> entities;
         gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
         std::vector<int> set;
+        std::vector<char> in_set(m_.nodes.size(), 0);  // a node once, in the order the elements list them
         for (int e : entities) {
           std::vector<int> types;
           std::vector<std::vector<std::size_t>> elements, nodes;
@@ -263,7 +264,7 @@ class Reader {
               const auto it = index_.find(tag_of_node);
               if (it == index_.end())
                 fail(kind + " '" + name + "' has a node on no cell of a body: it must lie on the boundary of a " + physical(m_.dim));
-              if (std::find(set.begin(), set.end(), it->second) == set.end()) set.push_back(it->second);
+              if (!in_set[it->second]) in_set[it->second] = 1, set.push_back(it->second);
             }
           }
         }
