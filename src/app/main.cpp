@@ -147,6 +147,9 @@ int main(int argc, char** argv) {
       throw rccm::InputError("under mpirun only `rccm run` and `rccm bench` share their work among processes; run `rccm " +
                              app.get_subcommands().front()->get_name() + "` as one process");
     if (*bench) {
+      const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
+      if ((scale_levels > 0 || scale3d_levels > 0) && linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
+        throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
       std::ostream nowhere(nullptr);  // every process runs the cases, process 0 prints
       std::ostream& out = root ? std::cout : nowhere;
       std::vector<rccm::BenchRow> rows;
@@ -155,9 +158,6 @@ int main(int argc, char** argv) {
         rows.push_back(rccm::run_bench_case(c));
         rccm::print_bench_row(out, rows.back());
       }
-      const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
-      if ((scale_levels > 0 || scale3d_levels > 0) && linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
-        throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
       // A family of growing cases: its table, the body's solver and the growth exponents.
       const auto family = [&](const std::string& title, const std::vector<rccm::BenchCase>& cases) {
         if (cases.empty()) return;

@@ -1,5 +1,7 @@
 #include "rccm/fem/material.hpp"
 
+#include "rccm/base/errors.hpp"
+
 #include <Eigen/Dense>
 
 #include <cmath>
@@ -64,6 +66,7 @@ Eigen::Matrix4d plane_block(const Eigen::Matrix<double, 6, 6>& C) {
 
 Eigen::Matrix3d material_axes(const MaterialParams& p) {
   const Eigen::Vector3d n(p.axis3[0], p.axis3[1], p.axis3[2]);
+  RCCM_VERIFY(std::abs(n.norm() - 1) < 1e-12, "material_axes(): axis3 must be a unit vector (the config reader makes it one)");
   // Axis 1 at angle 0: x projected on the plane normal to axis 3 (y when axis 3 is along x).
   const Eigen::Vector3d x = std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY();
   const Eigen::Vector3d e1 = (x - x.dot(n) * n).normalized(), e2 = n.cross(e1);

@@ -11,6 +11,7 @@
 
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 
 using namespace rccm;
@@ -143,13 +144,19 @@ TEST_CASE("3D orthotropic law: uniaxial stress along the turned axes gives the e
   const double E1 = 1.4e5, E2 = 1e4, E3 = 9e3, nu12 = 0.3, nu13 = 0.25, nu23 = 0.45, G12 = 5e3, G13 = 4.5e3, G23 = 3.4e3;
   // axis3 and the reference axes (1, 2) at angle 0 (README "3D": x projected on the plane
   // normal to axis 3, y when axis 3 is along x; axis 2 = axis 3 x axis 1).
-  const Eigen::Vector3d oblique = Eigen::Vector3d(1, 2, 3).normalized();
-  const Eigen::Vector3d oblique_1 = (Eigen::Vector3d::UnitX() - oblique.x() * oblique).normalized();
-  const std::array<std::array<Eigen::Vector3d, 3>, 4> frames{{
+  const auto projected = [](const Eigen::Vector3d& reference, const Eigen::Vector3d& n) {
+    const Eigen::Vector3d r1 = (reference - reference.dot(n) * n).normalized();
+    return std::array<Eigen::Vector3d, 3>{n, r1, n.cross(r1)};
+  };
+  const double deg = M_PI / 180;
+  const std::array<std::array<Eigen::Vector3d, 3>, 6> frames{{
       {{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}},  // the default: the plane axes turned about z
       {{{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}},  // a plate in x-z (the corner peel's)
       {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
-      {{oblique, oblique_1, oblique.cross(oblique_1)}},
+      projected(Eigen::Vector3d::UnitX(), Eigen::Vector3d(1, 2, 3).normalized()),
+      // 30 degrees from x (|n_x| = 0.87 < 0.9): x projected; 20 degrees (0.94): y projected.
+      projected(Eigen::Vector3d::UnitX(), Eigen::Vector3d(std::cos(30 * deg), std::sin(30 * deg), 0)),
+      projected(Eigen::Vector3d::UnitY(), Eigen::Vector3d(std::cos(20 * deg), 0, std::sin(20 * deg))),
   }};
   for (const auto& frame : frames)
     for (double angle : {0.0, 30.0, 117.0}) {

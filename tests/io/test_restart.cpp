@@ -259,6 +259,19 @@ TEST_CASE("a checkpoint whose state breaks the model's rules is refused, naming 
              Catch::Contains("contact_nodes must be one mesh node per contact node"));
   CHECK_THAT(message([](Checkpoint& c) { c.contact_nodes = {4, -5, 6}; }),
              Catch::Contains("contact_nodes must be one mesh node per contact node"));
+  // Values no int holds (written by hand: the writer takes ints).
+  std::string text;
+  {
+    write_checkpoint(dir, good);
+    std::ifstream in(checkpoint_path(dir));
+    text.assign(std::istreambuf_iterator<char>(in), {});
+  }
+  for (const char* nodes : {"contact_nodes 3 4 inf 6", "contact_nodes 3 4 1e10 6", "contact_nodes 3 4 nan 6"}) {
+    const std::size_t at = text.find("contact_nodes ");
+    std::ofstream(checkpoint_path(dir)) << text.substr(0, at) << nodes << text.substr(text.find('\n', at));
+    INFO(nodes);
+    CHECK_THROWS_WITH(read_checkpoint(dir, cfg), Catch::Contains("contact_nodes must be one mesh node per contact node"));
+  }
   fs::remove_all(dir);
 }
 

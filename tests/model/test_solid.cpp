@@ -148,7 +148,6 @@ output = { times = [2.143, 3.143, 3.571]; };
                  32, 50.0, 1e-6);
 }
 
-// The corner lifted 0.03 mm/s for 5 s, by sweeps (the 3D exact step costs more here: README).
 TEST_CASE("a 3D interface lists its pairs in bisection order: every bisection of the pairs' range is a "
           "compact patch (the compressed W0's clusters), not a strip of rows",
           "[solid]") {
@@ -171,6 +170,7 @@ TEST_CASE("a 3D interface lists its pairs in bisection order: every bisection of
   CHECK(patches == 15);
 }
 
+// The corner lifted 0.03 mm/s for 5 s, by sweeps (the 3D exact step costs more here: README).
 TEST_CASE("a square plate peeled by one corner: symmetric about the diagonal, a curved front, beta never rises", "[solid]") {
   const Config cfg = test::corner_peel(8, {"output.times=[2.5]"});
   Eigen::VectorXd previous;

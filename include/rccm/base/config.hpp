@@ -56,7 +56,7 @@ struct MaterialParams {
   double nu12 = 0.0, nu13 = 0.0, nu23 = 0.0;  // nu_ij = -strain_j / strain_i under stress along i
   double G12 = 0.0;                           // in-plane shear modulus, MPa
   double G13 = 0.0, G23 = 0.0;                // out-of-plane shear moduli, MPa (3D; 0: not given)
-  double angle = 0.0;                         // degrees, from x to axis 1, counter-clockwise (about axis3)
+  double angle = 0.0;                         // degrees, axis 1 from x (3D: from the reference axis), about axis3
   std::array<double, 3> axis3{0.0, 0.0, 1.0};  // 3D: material axis 3, unit (2D: z)
   Hypothesis hypothesis = Hypothesis::PlaneStrain;
 };

@@ -39,7 +39,7 @@ class Material {
 
 /// The material axes 1, 2, 3 of `p` as the columns of a rotation: axis 3 along p.axis3 (z
 /// in 2D), axis 1 at p.angle from the reference axis (x projected on the plane normal to
-/// axis 3; y when axis 3 is within 26 degrees of x), turning towards axis 2 = axis 3 x axis 1.
+/// axis 3; y when |axis3 . x| >= 0.9, i.e. within 25.8 degrees of the x axis), turning towards axis 2 = axis 3 x axis 1.
 Eigen::Matrix3d material_axes(const MaterialParams& p);
 
 /// The compliance of `p` in its material axes (Voigt 11, 22, 33, 23, 13, 12, engineering
