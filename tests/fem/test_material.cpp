@@ -154,8 +154,10 @@ TEST_CASE("3D orthotropic law: uniaxial stress along the turned axes gives the e
       {{{0, 1, 0}, {1, 0, 0}, {0, 0, -1}}},  // a plate in x-z (the corner peel's)
       {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}},
       projected(Eigen::Vector3d::UnitX(), Eigen::Vector3d(1, 2, 3).normalized()),
-      // 30 degrees from x (|n_x| = 0.87 < 0.9): x projected; 20 degrees (0.94): y projected.
-      projected(Eigen::Vector3d::UnitX(), Eigen::Vector3d(std::cos(30 * deg), std::sin(30 * deg), 0)),
+      // 30 degrees from x (|n_x| = 0.87 < 0.9): x projected; 20 degrees (0.94): y projected
+      // (out of the x-y plane, where the two projections are not parallel).
+      projected(Eigen::Vector3d::UnitX(),
+                Eigen::Vector3d(std::cos(30 * deg), std::sin(30 * deg) * std::cos(45 * deg), std::sin(30 * deg) * std::sin(45 * deg))),
       projected(Eigen::Vector3d::UnitY(), Eigen::Vector3d(std::cos(20 * deg), 0, std::sin(20 * deg))),
   }};
   for (const auto& frame : frames)
