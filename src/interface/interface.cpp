@@ -111,7 +111,7 @@ class PairBuilder {
       const CircleFoundation circle{Eigen::Vector3d(p_.centre[0], p_.centre[1], p_.centre[2]), p_.radius, p_.inside,
                                     Eigen::Vector3d(p_.axis[0], p_.axis[1], p_.axis[2])};
       if (circle.radial(x).norm() < 1e-12 * p_.radius)
-        fail(".circle", "contact node " + std::to_string(k) + " lies at the centre" + (p_.axis[0] || p_.axis[1] || p_.axis[2] ? " (on the axis)" : ""));
+        fail(".circle", "contact node " + std::to_string(k) + " lies at the centre" + (circle.axis.isZero() ? "" : " (on the axis)"));
       c.frame = circle.frame_at(x);
       c.g0 = circle.gap_at(x);
       if (c.g0 < -1e-6 * p_.radius) {

@@ -148,9 +148,8 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
   }
   w.vector("diagnostics", Eigen::Map<const Eigen::VectorXd>(c.diagnostics.data(), Eigen::Index(c.diagnostics.size())));
   w.vector("excursion", Eigen::Vector3d(c.excursion.size, c.excursion.t, c.excursion.node));
-  Eigen::VectorXd nodes(Eigen::Index(c.contact_nodes.size()));
-  for (Eigen::Index i = 0; i < nodes.size(); ++i) nodes[i] = c.contact_nodes[std::size_t(i)];
-  w.vector("contact_nodes", nodes);
+  w.vector("contact_nodes",
+           Eigen::Map<const Eigen::VectorXi>(c.contact_nodes.data(), Eigen::Index(c.contact_nodes.size())).cast<double>());
   w.text("end", "");
   file.commit();
 }
