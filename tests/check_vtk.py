@@ -8,7 +8,8 @@ ParaView reads) and checks them:
     argument);
   - the interface: 2D a chain of lines, 3D a surface of triangles and quads whose areas sum
     to the nodes' tributary areas; beta, u, Rbar equal the
-    interface CSV at the output times, p = r / a, and the global vector r_xyz has the length of
+    interface CSV at the output times, each CSV row's `mesh node` is the body's point at the
+    row's coordinates, p = r / a, and the global vector r_xyz has the length of
     the local r.
 Exit 77 (skipped) when python3-vtk9 is not installed."""
 import csv
@@ -98,6 +99,12 @@ for (t, vtu), (_, vtp) in zip(bodies, interface):
         assert len(rows) == poly.GetNumberOfPoints(), (len(rows), poly.GetNumberOfPoints())
         n, t = (2, "t1") if solid else (1, "t")  # local components: tangents first, the normal last
         for i, row in enumerate(rows):
+            # The row's mesh node is the body's point at the row's coordinates, and the interface's point i.
+            x = [float(row[c]) for c in ("x [mm]", "y [mm]", "z [mm]") if c in row]
+            mesh_point, facet_point = grid.GetPoint(int(row["mesh node"])), poly.GetPoint(i)
+            for k, xk in enumerate(x):
+                assert abs(mesh_point[k] - xk) <= 1e-9 * max(1.0, abs(xk)), (vtu, i, "mesh node", mesh_point, x)
+                assert abs(facet_point[k] - xk) <= 1e-9 * max(1.0, abs(xk)), (vtp, i, "point", facet_point, x)
             for mine, col in ((ip["beta"][i], "beta"), (ip["u"][i][n], "u_n [mm]"), (ip["u"][i][0], f"u_{t} [mm]"),
                               (ip["Rbar"][i][n], "Rbar_n [N]"), (ip["Rbar"][i][0], f"Rbar_{t} [N]")):
                 assert abs(mine - float(row[col])) <= 1e-9 * max(1.0, abs(mine)), (vtp, i, col, mine, row[col])

@@ -152,7 +152,9 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
   const Interface& I = model_.interface();
   const Layout& L = I.layout;
   const bool solid = model_.mesh().dim == 3;
-  std::vector<std::string> header = {"node", "x [mm]", "y [mm]"};
+  // "node": the contact node (pair) index of messages and history.csv; "mesh node": its point
+  // in the mesh (the .vtu's point id), which a 3D run's pair order does not follow.
+  std::vector<std::string> header = {"node", "mesh node", "x [mm]", "y [mm]"};
   if (solid) header.push_back("z [mm]");
   header.insert(header.end(), {model_.mesh().axisymmetric || solid ? "a [mm2]" : "a [mm]", "t [s]", "beta"});
   for (const char* q : {"u", "Rbar", "Radh", "r", "p"})
@@ -165,7 +167,7 @@ void ResultWriter::output(const InterfaceState& s, const BodyState& b) {
   for (int i = 0; i < I.size(); ++i) {
     const Eigen::Vector3d& x = model_.mesh().nodes[I.pairs[i].node];
     const double a = I.pairs[i].measure;
-    std::vector<std::string> row = {std::to_string(i)};
+    std::vector<std::string> row = {std::to_string(i), std::to_string(I.pairs[i].node)};
     for (double v : {x.x(), x.y()}) row.push_back(csv_number(v));
     if (solid) row.push_back(csv_number(x.z()));
     for (double v : {a, s.t, s.beta[i]}) row.push_back(csv_number(v));
