@@ -3,6 +3,7 @@
 #include "rccm/contact/bipotential_solver.hpp"
 
 #include "random_problem.hpp"
+#include "rccm/la/hodlr.hpp"
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
@@ -91,6 +92,43 @@ TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain
     // Warm: a verifying pass, an exact step and a second pass, rarely more.
     INFO("trial " << trial << ": " << sweeps << " passes and sweeps, " << exact_solves << " exact solves in 20 solves");
     CHECK(sweeps <= 20 * 3);
+  }
+}
+
+TEST_CASE("3D warm starts: exact steps with turning slip directions agree with plain Gauss-Seidel, dense and compressed W0",
+          "[solver]") {
+  // As above with 3D pairs (slip directions on the circle, most pairs sliding in the hard
+  // family), on the dense W0 and on the same W0 compressed (la/hodlr.hpp, leaves of 4 pairs):
+  // the exact step's slide rows fix a direction, whose turn the refinement absorbs.
+  std::mt19937 gen(19);
+  std::uniform_real_distribution<double> U(-1, 1);
+  for (int trial = 0; trial < 8; ++trial) {
+    RandomProblem rp(12 + 3 * trial, 3, trial % 2 ? Family::Hard : Family::Mild, true, gen);
+    const CompressedDelassus compressed{HodlrMatrix(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 12, 3)};
+    for (const DelassusOperator* W0 : {static_cast<const DelassusOperator*>(&rp.W), static_cast<const DelassusOperator*>(&compressed)}) {
+      ContactProblem pb = rp.pb;
+      pb.W0 = W0;
+      BipotentialSolver warm(params(SweepForm::GaussSeidel, true));
+      ContactSolution previous = warm.solve(pb, {}, {});
+      REQUIRE(previous.converged);
+      int exact_solves = 0;
+      for (int step = 0; step < 12; ++step) {
+        pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(pb.q0.size(), [&]() { return U(gen); });
+        for (Eigen::Index c = 0; c < pb.Dbeta.size(); ++c)
+          pb.Dbeta[c] = std::clamp(pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, pb.D1[c]);
+        pb.mubar = (pb.mubar.array() + 0.005).min(1.0);
+        const ContactSolution s = warm.solve(pb, previous.Rbar, previous.u);
+        const ContactSolution reference = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(pb, {}, {});
+        INFO("trial " << trial << (W0 == &compressed ? " compressed" : " dense") << " step " << step);
+        REQUIRE(s.converged);
+        REQUIRE(reference.converged);
+        rccm::testing::require_solution(pb, s);
+        REQUIRE((s.Rbar - reference.Rbar).norm() <= 1e-8 * (1 + reference.Rbar.norm()));
+        exact_solves += s.exact_solves;
+        previous = s;
+      }
+      if (W0 == &rp.W) CHECK(exact_solves > 0);  // the dense path takes exact steps from a warm start
+    }
   }
 }
 
