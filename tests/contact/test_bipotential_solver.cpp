@@ -3,6 +3,7 @@
 #include "rccm/contact/bipotential_solver.hpp"
 
 #include "random_problem.hpp"
+#include "rccm/contact/solver_tuning.hpp"
 #include "rccm/la/hodlr.hpp"
 
 #include <Eigen/Dense>
@@ -130,6 +131,30 @@ TEST_CASE("3D warm starts: exact steps with turning slip directions agree with p
       if (W0 == &rp.W) CHECK(exact_solves > 0);  // the dense path takes exact steps from a warm start
     }
   }
+}
+
+TEST_CASE("the exact step's rows: a slide direction that turned a little keeps its factorized rows", "[solver]") {
+  const auto slide = [](double angle) {
+    PairRows r;
+    r.status = Status::Slide;
+    r.direction = Eigen::Vector2d(std::cos(angle), std::sin(angle));
+    return r;
+  };
+  const double drift = tuning::slide_direction_drift;
+  CHECK(slide(0.3) == slide(0.3 + 0.5 * drift));  // |d - d'| = 2 sin(angle / 2) ~ angle
+  CHECK(slide(0.3) != slide(0.3 + 2 * drift));
+  CHECK(slide(1.0) != slide(1.0 + 3.14159));       // reversed
+  PairRows stick = slide(0.3);
+  stick.status = Status::Stick;
+  CHECK(stick != slide(0.3));
+  stick.direction = Eigen::Vector2d(0.9, 0.1);      // not sliding: the direction does not count
+  PairRows other = stick;
+  other.direction = Eigen::Vector2d(-1, 0);
+  CHECK(stick == other);
+  // 2D: directions +-1 along t.
+  PairRows left = slide(0.0), right = slide(3.14159265358979);
+  left.direction = {1, 0}, right.direction = {-1, 0};
+  CHECK(left != right);
 }
 
 TEST_CASE("a single free node is solved exactly in each regime", "[solver]") {

@@ -23,6 +23,7 @@
 #pragma once
 
 #include "rccm/contact/contact_problem.hpp"
+#include "rccm/contact/solver_tuning.hpp"
 #include "rccm/la/hodlr.hpp"
 
 #include <Eigen/Core>
@@ -35,11 +36,13 @@ namespace rccm {
 
 /// Which linear rows a pair contributes: its status and, sliding, the slide direction
 /// (a tangential unit vector: (+1 or -1, 0) in 2D).
+/// Two are the same rows when the status agrees and, sliding, the directions agree to
+/// tuning::slide_direction_drift (in 2D they are +-1: equal or opposite).
 struct PairRows {
   Status status = Status::Separated;
   Eigen::Vector2d direction = Eigen::Vector2d::Zero();
   bool operator==(const PairRows& o) const {
-    return status == o.status && (status != Status::Slide || direction == o.direction);
+    return status == o.status && (status != Status::Slide || (direction - o.direction).norm() <= tuning::slide_direction_drift);
   }
   bool operator!=(const PairRows& o) const { return !(*this == o); }
 };

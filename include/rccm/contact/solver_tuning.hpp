@@ -36,6 +36,9 @@ constexpr double prescribed_pair = 1e-14;
 /// Relative change of a row's spring (E) or of mubar left to refinement instead of a
 /// low-rank correction.
 constexpr double row_drift = 1e-3;
+/// A 3D slide direction that turned by less than this (the distance of the unit vectors)
+/// keeps its factorized rows: the turn is left to refinement, as a drift of E or mubar is.
+constexpr double slide_direction_drift = 1e-2;
 /// Changed rows kept as a pending Woodbury correction up to 1/fold_fraction of the rows;
 /// folded into the inverse beyond; over half the rows: a new factorization.
 constexpr int fold_fraction = 8;
