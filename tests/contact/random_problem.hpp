@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
 
 namespace rccm::testing {
@@ -56,6 +57,17 @@ struct RandomProblem {
   DenseDelassus W{Eigen::MatrixXd()};
   ContactProblem pb;
 };
+
+/// One step of the drift between two solves of a run (as between the integrator's stages):
+/// the load q0 by up to 0.05, each spring D(beta) by up to 2 % (within [0, D1]), mubar up
+/// by 0.005 (at most mubar_max).
+inline void drift(ContactProblem& pb, double mubar_max, std::mt19937& gen) {
+  std::uniform_real_distribution<double> U(-1, 1);
+  pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(pb.q0.size(), [&]() { return U(gen); });
+  for (Eigen::Index c = 0; c < pb.Dbeta.size(); ++c)
+    pb.Dbeta[c] = std::clamp(pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, pb.D1[c]);
+  pb.mubar = (pb.mubar.array() + 0.005).min(mubar_max);
+}
 
 /// The solution satisfies the condensed equations u = W0 (Rbar + E u) + q0 and the law
 /// (Signorini, Coulomb, complementarity: relative residuals).

@@ -65,7 +65,6 @@ TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain
   // of the integrator), each started from the previous solution with one solver object that
   // keeps its factorization, against cold plain Gauss-Seidel.
   std::mt19937 gen(11);
-  std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 12; ++trial) {
     RandomProblem rp(4 + trial, 2, Family::Mild, true, gen);
     BipotentialSolver warm(params(SweepForm::GaussSeidel, true));
@@ -73,10 +72,7 @@ TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain
     REQUIRE(previous.converged);
     int exact_solves = 0, sweeps = 0;
     for (int step = 0; step < 20; ++step) {
-      rp.pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
-      for (Eigen::Index c = 0; c < rp.pb.Dbeta.size(); ++c)
-        rp.pb.Dbeta[c] = std::clamp(rp.pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, rp.pb.D1[c]);
-      rp.pb.mubar = (rp.pb.mubar.array() + 0.005).min(0.5);
+      rccm::testing::drift(rp.pb, 0.5, gen);
       const ContactSolution s = warm.solve(rp.pb, previous.Rbar, previous.u);
       const ContactSolution reference = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(rp.pb, {}, {});
       INFO("trial " << trial << " step " << step);
@@ -102,7 +98,6 @@ TEST_CASE("3D warm starts: exact steps with turning slip directions agree with p
   // family), on the dense W0 and on the same W0 compressed (la/hodlr.hpp, leaves of 4 pairs):
   // the exact step's slide rows fix a direction, whose turn the refinement absorbs.
   std::mt19937 gen(19);
-  std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 8; ++trial) {
     RandomProblem rp(12 + 3 * trial, 3, trial % 2 ? Family::Hard : Family::Mild, true, gen);
     const CompressedDelassus compressed{HodlrMatrix(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 12, 3)};
@@ -114,10 +109,7 @@ TEST_CASE("3D warm starts: exact steps with turning slip directions agree with p
       REQUIRE(previous.converged);
       int exact_solves = 0;
       for (int step = 0; step < 12; ++step) {
-        pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(pb.q0.size(), [&]() { return U(gen); });
-        for (Eigen::Index c = 0; c < pb.Dbeta.size(); ++c)
-          pb.Dbeta[c] = std::clamp(pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, pb.D1[c]);
-        pb.mubar = (pb.mubar.array() + 0.005).min(1.0);
+        rccm::testing::drift(pb, 1.0, gen);
         const ContactSolution s = warm.solve(pb, previous.Rbar, previous.u);
         const ContactSolution reference = BipotentialSolver(params(SweepForm::GaussSeidel, false)).solve(pb, {}, {});
         INFO("trial " << trial << (W0 == &compressed ? " compressed" : " dense") << " step " << step);
@@ -152,8 +144,8 @@ TEST_CASE("the exact step's rows: a slide direction that turned a little keeps i
   other.direction = Eigen::Vector2d(-1, 0);
   CHECK(stick == other);
   // 2D: directions +-1 along t.
-  PairRows left = slide(0.0), right = slide(3.14159265358979);
-  left.direction = {1, 0}, right.direction = {-1, 0};
+  PairRows left = slide(0.0), right = left;
+  right.direction = {-1, 0};
   CHECK(left != right);
 }
 

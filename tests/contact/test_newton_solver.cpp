@@ -203,7 +203,6 @@ TEST_CASE("warm starts along a drifting problem: about one Newton step per solve
   // As between the stages of the integrator: load, beta and friction drift; one solver object
   // (its active-set factorization reused), each solve started from the previous solution.
   std::mt19937 gen(29);
-  std::uniform_real_distribution<double> U(-1, 1);
   for (int trial = 0; trial < 8; ++trial) {
     RandomProblem rp(6 + 2 * trial, 2, trial % 2 ? Family::Hard : Family::Mild, true, gen);
     NewtonSolver warm(params());
@@ -211,10 +210,7 @@ TEST_CASE("warm starts along a drifting problem: about one Newton step per solve
     REQUIRE(previous.converged);
     int iterations = 0;
     for (int step = 0; step < 20; ++step) {
-      rp.pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
-      for (Eigen::Index c = 0; c < rp.pb.Dbeta.size(); ++c)
-        rp.pb.Dbeta[c] = std::clamp(rp.pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, rp.pb.D1[c]);
-      rp.pb.mubar = (rp.pb.mubar.array() + 0.005).min(1.0);
+      rccm::testing::drift(rp.pb, 1.0, gen);
       const ContactSolution s = warm.solve(rp.pb, previous.Rbar, previous.u);
       const ContactSolution reference = BipotentialSolver(params()).solve(rp.pb, {}, {});
       INFO("trial " << trial << " step " << step);
