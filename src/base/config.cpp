@@ -67,7 +67,7 @@ std::string Config::fingerprint() const {
   h("time.T", time.T)("time.steps", time.steps);
   h("solver.method", double(solver.method))("solver.over_relaxation", solver.over_relaxation);
   h("solver.tolerance", solver.tolerance)("solver.max_iterations", solver.max_iterations);
-  h("solver.local_iterations", solver.local_iterations)("solver.form", double(solver.form));
+  h("solver.local_iterations", solver.local_iterations)("solver.form", double(solver.form))("solver.anderson", solver.anderson);
   h("solver.rho", double(solver.rho))("solver.relaxation", solver.relaxation)("solver.active_set", solver.active_set);
   h("solver.active_set_max_nodes", solver.active_set_max_nodes)("solver.compressed_min_nodes", solver.compressed_min_nodes);
   // solver.linear is left out: the body's solver changes the results by round-off only, and a

@@ -1,6 +1,7 @@
 #include "rccm/contact/bipotential_solver.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/contact/anderson.hpp"
 #include "rccm/contact/pair_block.hpp"
 #include "rccm/contact/solver_tuning.hpp"
 
@@ -144,6 +145,12 @@ class BipotentialSolver::Iteration {
     return sweeps_left > double(pb_.W0->size()) / tuning::sweeps_per_factorization;
   }
 
+  /// Anderson's extrapolation after a sweep that started at y_in (anderson.hpp); Rbar follows.
+  void accelerate(AndersonMixing& anderson, const Eigen::VectorXd& y_in) {
+    anderson.mix(y_in, s.y, s.u);
+    s.Rbar = s.y - E_.cwiseProduct(s.u);
+  }
+
   /// The pattern of the last verifying pass, and of the last sweep.
   Pattern verified_pattern() const { return pattern_of<dim>(check_.branch, blocks_, check_.projected); }
   Pattern swept_pattern() const { return pattern_of<dim>(s.status, blocks_, s.Rbar); }
@@ -226,27 +233,36 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
     }
   }
 
-  // Sweeps; once the pattern repeats, an exact step for it (then verified by the next
-  // sweep), and again every few sweeps if the same pattern persists unconverged. The warm
-  // start's pattern counts as seen: the exact step may follow the first sweep.
+  // Sweeps, each extrapolated from the last few (Anderson, anderson.hpp); once the pattern
+  // repeats, an exact step for it instead (then verified by the next sweep), and again every
+  // few sweeps if the same pattern persists unconverged. The warm start's pattern counts as
+  // seen: the exact step may follow the first sweep.
   Pattern previous = active_set<dim>().pattern(), solved;
   int repeats = 0, since_exact = 0;
-  for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
-    const Eigen::VectorXd R_old = s.Rbar;
-    it.sweep();
-    if (it.converged_after_sweep(R_old)) break;
-    if (!exact) continue;
+  const auto exact_step_due = [&] {
+    if (!exact) return false;
     const Pattern pattern = it.swept_pattern();
     repeats = pattern == previous ? repeats + 1 : 0;
     previous = pattern;
     ++since_exact;
-    if (repeats >= 1 && (pattern != solved || since_exact >= tuning::exact_step_interval) &&
-        s.exact_solves < tuning::max_exact_steps && it.exact_step_pays(active_set<dim>())) {
-      it.exact_step(active_set<dim>(), pattern);  // if singular, the sweeps go on
-      ++s.exact_solves;
-      since_exact = 0;
-      solved = pattern;
+    return repeats >= 1 && (pattern != solved || since_exact >= tuning::exact_step_interval) &&
+           s.exact_solves < tuning::max_exact_steps && it.exact_step_pays(active_set<dim>());
+  };
+  AndersonMixing anderson(gauss_seidel ? params_.anderson : 0);
+  for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
+    const Eigen::VectorXd R_old = s.Rbar;
+    const Eigen::VectorXd y_in = s.y;
+    it.sweep();
+    if (it.converged_after_sweep(R_old)) break;
+    if (!exact_step_due()) {
+      it.accelerate(anderson, y_in);
+      continue;
     }
+    it.exact_step(active_set<dim>(), previous);  // if singular, the sweeps go on
+    anderson.reset();  // y jumped: the sweeps' history does not lead to it
+    ++s.exact_solves;
+    since_exact = 0;
+    solved = previous;
   }
   if (!s.converged) {
     s.iterations = params_.max_iterations;
@@ -261,7 +277,8 @@ std::string BipotentialSolver::failure_advice() const {
     m << "the Jacobi form diverges on strongly coupled interfaces: use solver.form = \"gauss-seidel\" "
       << "or under-relax it (solver.relaxation = 0.2 works on B2)";
   else
-    m << "try solver.method = \"newton\" (it solved every stall seen so far), raise solver.max_iterations, "
+    m << "try solver.method = \"newton\" (it solved every stall seen so far), solver.anderson = 0 (plain sweeps), "
+      << "raise solver.max_iterations, "
       << "loosen solver.tolerance (" << params_.tolerance << ") or take smaller steps";
   return m.str();
 }

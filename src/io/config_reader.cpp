@@ -654,7 +654,7 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   S.active_set = dim == 2;
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
-  r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "rho", "relaxation",
+  r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "anderson", "rho", "relaxation",
               "active_set", "active_set_max_nodes", "compressed_min_nodes", "linear", "linear_tolerance"});
   S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
   S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
@@ -668,6 +668,9 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   if (s->exists("local_iterations"))
     r.check(S.local_iterations >= 1, (*s)["local_iterations"], "must be >= 1", S.local_iterations);
   S.form = static_cast<SweepForm>(r.choice(*s, "form", {"gauss-seidel", "jacobi"}, 0));
+  S.anderson = r.integer(*s, "anderson", S.anderson);
+  if (s->exists("anderson"))
+    r.check(S.anderson >= 0 && S.anderson <= 50, (*s)["anderson"], "must be in [0, 50]", S.anderson);
   S.rho = static_cast<RhoRule>(r.choice(*s, "rho", {"eigen", "paper"}, 0));
   S.relaxation = r.number(*s, "relaxation", S.relaxation);
   if (s->exists("relaxation"))

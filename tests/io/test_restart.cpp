@@ -307,7 +307,7 @@ output = { directory = "b"; checkpoint_steps = 7; };
         "interface.w=0.02", "interface.alpha=2.0", "interface.mu=0.2", "interface.beta0=0.9", "interface.g0=0.1",
         "loads.[0].value=0.2", "loads.[0].component=x", "loads.[0].node_set=top_right",
         "loads.[0].type=force", "time.T=2.0", "time.steps=100", "solver.tolerance=1e-9", "solver.max_iterations=99",
-        "solver.local_iterations=9", "solver.form=jacobi", "solver.rho=paper", "solver.relaxation=0.5",
+        "solver.local_iterations=9", "solver.form=jacobi", "solver.anderson=2", "solver.rho=paper", "solver.relaxation=0.5",
         "solver.active_set=false", "solver.active_set_max_nodes=7", "integrator.method=euler", "integrator.scheme=erk",
         "integrator.table=ARKODE_SDIRK_5_3_4", "integrator.rtol=1e-7", "integrator.atol=1e-9", "integrator.max_step=0.1",
         "integrator.initial_step=0.01", "integrator.fixed_step=0.01", "integrator.min_step=1e-6",

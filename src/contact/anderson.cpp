@@ -1,0 +1,34 @@
+#include "rccm/contact/anderson.hpp"
+
+#include <Eigen/QR>
+
+namespace rccm {
+
+void AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u) {
+  if (depth_ <= 0) return;
+  const Eigen::Index m = y.size();
+  const Eigen::VectorXd f = y - y_in;  // the sweep's residual
+  if (has_previous_) {
+    if (dF_.rows() != m) dF_.resize(m, depth_), dG_.resize(m, depth_), dU_.resize(m, depth_);
+    dF_.col(next_) = f - f_previous_;
+    dG_.col(next_) = y - G_previous_;
+    dU_.col(next_) = u - u_previous_;
+    next_ = (next_ + 1) % depth_;
+    count_ = std::min(count_ + 1, depth_);
+  }
+  f_previous_ = f;
+  G_previous_ = y;
+  u_previous_ = u;
+  has_previous_ = true;
+  if (count_ == 0) return;
+  // The least-squares problem by a rank-revealing QR: nearly parallel differences (a
+  // stagnating sweep) are dropped rather than amplified.
+  const auto F = dF_.leftCols(count_);
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(F);
+  qr.setThreshold(1e-10);
+  const Eigen::VectorXd gamma = qr.solve(f);
+  y.noalias() -= dG_.leftCols(count_) * gamma;
+  u.noalias() -= dU_.leftCols(count_) * gamma;
+}
+
+}  // namespace rccm
