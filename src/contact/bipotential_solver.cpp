@@ -259,7 +259,6 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
       continue;
     }
     it.exact_step(active_set<dim>(), previous);  // if singular, the sweeps go on
-    anderson.reset();  // y jumped: the sweeps' history does not lead to it
     ++s.exact_solves;
     since_exact = 0;
     solved = previous;

@@ -73,22 +73,3 @@ TEST_CASE("Anderson mixing with a short history still converges, and faster than
   CHECK(plain <= 2000);
   CHECK(mixed < plain / 2);
 }
-
-TEST_CASE("Anderson mixing forgets its history on reset: the next mix returns the sweep's result as it is",
-          "[anderson]") {
-  std::mt19937 gen(13);
-  const AffineMap map(8, gen);
-  AndersonMixing anderson(3);
-  Eigen::VectorXd y = Eigen::VectorXd::Zero(8), u = Eigen::VectorXd::Zero(8);
-  for (int k = 0; k < 3; ++k) {
-    const Eigen::VectorXd y_in = y;
-    y = map.A * y_in + map.b;
-    anderson.mix(y_in, y, u);
-  }
-  anderson.reset();
-  const Eigen::VectorXd y_in = y;
-  const Eigen::VectorXd G = map.A * y_in + map.b;
-  y = G;
-  anderson.mix(y_in, y, u);
-  CHECK(y == G);
-}

@@ -269,3 +269,24 @@ TEST_CASE("slowly converging sweeps: a small change of Rbar is not convergence, 
     CHECK(r.max() <= 1e-9);
   }
 }
+
+TEST_CASE("a solve stopped by solver.max_iterations leaves a consistent state for its failure message", "[solver]") {
+  // The residual and worst pair a failure names are those of the returned state: after the
+  // last sweep's extrapolation (solver.anderson) too, u = W0 y + q0 and Rbar = y - E u.
+  std::mt19937 gen(29);
+  for (int dim : {2, 3})
+    for (int trial = 0; trial < 6; ++trial) {
+      const RandomProblem rp(20 + trial, dim, Family::Hard, trial % 2 == 1, gen);
+      SolverParams p = plain_sweeps();
+      p.anderson = 5;
+      p.max_iterations = 4;
+      const ContactSolution s = BipotentialSolver(p).solve(rp.pb, {}, {});
+      INFO("dim " << dim << " trial " << trial << ": residual " << s.residual);
+      REQUIRE_FALSE(s.converged);
+      CHECK(s.residual > p.tolerance);
+      CHECK(s.worst_node >= 0);
+      const Eigen::VectorXd E = rp.pb.D1 - rp.pb.Dbeta;
+      CHECK((rp.matrix() * s.y + rp.pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));
+      CHECK((s.y - E.cwiseProduct(s.u) - s.Rbar).norm() <= 1e-12 * (1 + s.y.norm()));
+    }
+}

@@ -1,11 +1,13 @@
-// Anderson acceleration of a fixed-point iteration y -> G(y) (Walker and Ni 2011, "type II";
-// for nonsmooth contact: Mashayekhi et al. 2019). After each sweep took y_k to G(y_k), the
+// Anderson acceleration of a fixed-point iteration y -> G(y) (Anderson 1965; Walker and Ni
+// 2011; docs/solvers/anderson.md). After each sweep took y_k to G(y_k), the
 // next iterate is the combination of the last few G's whose residuals f = G(y) - y combine to
 // the least norm:
 //   gamma = argmin |f_k - dF gamma|,   y_{k+1} = G(y_k) - dG gamma
 // (dF, dG: differences of consecutive f and G). On a fixed status pattern the Gauss-Seidel
-// sweep is affine in y and this is GMRES in disguise; where the pattern changes the history
-// no longer describes the map and the caller resets it.
+// sweep is affine in y and this is GMRES in disguise; where pairs change status the
+// extrapolation is a secant guess that the next sweep's projections correct. Each difference
+// is a secant of G between two points it was evaluated at, however the second was reached
+// (an exact step in between included): the history stays valid.
 //
 // u = W0 y + q0 is affine in y: the same combination of the sweeps' u's gives the u of the
 // combined y, without a product with W0.
@@ -19,12 +21,6 @@ class AndersonMixing {
  public:
   /// depth: the differences kept (0: no acceleration).
   explicit AndersonMixing(int depth) : depth_(depth) {}
-
-  /// Forget the history: the next sweep's result is taken as it is.
-  void reset() {
-    count_ = 0;
-    has_previous_ = false;
-  }
 
   /// A sweep took y_in to (y, u = W0 y + q0): replaces (y, u) by the extrapolated iterate.
   void mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u);
