@@ -233,7 +233,8 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
     }
   }
 
-  // Sweeps, each extrapolated from the last few (Anderson, anderson.hpp); once the pattern
+  // Sweeps, each extrapolated from the last few (Anderson, anderson.hpp; plain beyond
+  // tuning::anderson_sweeps, where an extrapolation may stall); once the pattern
   // repeats, an exact step for it instead (then verified by the next sweep), and again every
   // few sweeps if the same pattern persists unconverged. The warm start's pattern counts as
   // seen: the exact step may follow the first sweep.
@@ -255,7 +256,7 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
     it.sweep();
     if (it.converged_after_sweep(R_old)) break;
     if (!exact_step_due()) {
-      it.accelerate(anderson, y_in);
+      if (s.iterations <= tuning::anderson_sweeps) it.accelerate(anderson, y_in);
       continue;
     }
     it.exact_step(active_set<dim>(), previous);  // if singular, the sweeps go on

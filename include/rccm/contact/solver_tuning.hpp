@@ -16,6 +16,11 @@ constexpr int exact_step_interval = 3;
 /// exceed m / this (a dense factorization of m unknowns costs about m^3 / 3 products, a sweep
 /// about m^2): measured on fc2d-bench, B1's cold steps need it, the granular flow does not.
 constexpr double sweeps_per_factorization = 3;
+/// Sweeps of one solve extrapolated by Anderson acceleration (solver.anderson); plain
+/// sweeps beyond. Near round-off on a nonsmooth map the extrapolation can stall where the
+/// plain sweeps still contract: the 1089-node corner peel at t = 9.05 (residual 6e-10 after
+/// 2000 sweeps); accelerated solves there needed at most 93 sweeps.
+constexpr int anderson_sweeps = 200;
 /// Sweeps between two fresh products u = W0 y + q0: Gauss-Seidel's incremental updates of u
 /// accumulate round-off; a product reads all of W0, as much as a sweep.
 constexpr int refresh_interval = 8;
