@@ -25,8 +25,6 @@ class AndersonMixing {
   /// A sweep took y_in to (y, u = W0 y + q0): replaces (y, u) by the extrapolated iterate.
   void mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u);
 
-  int depth() const { return depth_; }
-
  private:
   int depth_;
   int count_ = 0, next_ = 0;  // columns held, and the one to overwrite next
