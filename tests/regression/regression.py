@@ -22,6 +22,12 @@ What is compared, per kind of case:
   amplified  a fixed-step run that amplifies round-off: Euler-210 on B2 is unstable in its last
           phase (README "Integrators of beta": dt C u^2 / alpha reaches 31), where another CPU's BLAS kernel moves
           beta by 3e-7 and Rbar by 4e-8 of its scale: checked as `adaptive`.
+  newton  ARKODE at a fixed step: each stage is still solved by Newton to ARKODE's nonlinear
+          tolerance (0.1 of the error weights), and round-off of another instruction set (FMA,
+          AVX-512 under RCCM_NATIVE) flips an iteration count: B1 built for this machine against
+          a generic build gave other contact-solve counts in 102 of 1004 steps, beta 2.1e-8 apart
+          at t = 3.571 and 4.0e-7 at t = 10 (the last phase, beta small, amplifies): checked as
+          `adaptive`.
 """
 import csv, gzip, io, math, os, shutil, subprocess, sys, tempfile
 
@@ -34,9 +40,9 @@ CASES = [
     ("b1-euler", "fixed", ["run", "config/b1.cfg", "--set", "integrator.method=euler", "--set", "time.steps=210"]),
     ("b2-euler", "amplified", ["run", "config/b2.cfg", "--set", "integrator.method=euler", "--set", "time.steps=210"]),
     ("b2-mild-euler", "fixed", ["run", "config/b2-mild.cfg", "--set", "integrator.method=euler", "--set", "time.steps=210"]),
-    ("b1-arkode-fixed", "fixed", ["run", "config/b1.cfg", "--set", "integrator.fixed_step=0.01"]),
-    ("b2-arkode-fixed", "fixed", ["run", "config/b2.cfg", "--set", "integrator.fixed_step=0.01"]),
-    ("b2-mild-arkode-fixed", "fixed", ["run", "config/b2-mild.cfg", "--set", "integrator.fixed_step=0.01"]),
+    ("b1-arkode-fixed", "newton", ["run", "config/b1.cfg", "--set", "integrator.fixed_step=0.01"]),
+    ("b2-arkode-fixed", "newton", ["run", "config/b2.cfg", "--set", "integrator.fixed_step=0.01"]),
+    ("b2-mild-arkode-fixed", "newton", ["run", "config/b2-mild.cfg", "--set", "integrator.fixed_step=0.01"]),
     ("b1-arkode-rtol", "adaptive", ["run", "config/b1.cfg", "--set", "integrator.rtol=1e-10"]),
     ("b2-arkode-rtol", "adaptive", ["run", "config/b2.cfg", "--set", "integrator.rtol=1e-10"]),
     ("b1-alpha-sweep", "adaptive", ["sweep", "config/b1.cfg", "--set", "interface.alpha=0.1,1,10",
@@ -89,7 +95,7 @@ def compare(name, kind, ref_text, new_text, largest, fixed_tolerance=1e-10):
     ref_head, ref_rows = read_csv(ref_text)
     new_head, new_rows = read_csv(new_text)
     fails = []
-    if kind in ("adaptive", "amplified"):
+    if kind in ("adaptive", "amplified", "newton"):
         if not os.path.basename(name).startswith("interface_t"):
             return fails
         columns = [c for c in ref_head if c == "beta"]
