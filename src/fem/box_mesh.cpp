@@ -58,7 +58,7 @@ Mesh make_box(const MeshParams& p) {
           s[std::string(j == 0 ? "bottom" : "top") + (i == 0 ? "_left" : "_right") + (k == 0 ? "_back" : "_front")] = {n};
         s["all"].push_back(n);
       }
-  add_box_sets(m, p.node_sets);  // [xmin, xmax, ymin, ymax]: every z
+  add_box_sets(m, p.node_sets);
   return m;
 }
 

@@ -34,7 +34,8 @@ void add_box_sets(Mesh& mesh, const std::vector<NodeSetDef>& boxes) {
     std::vector<int> nodes;
     for (int n = 0; n < mesh.num_nodes(); ++n) {
       const Eigen::Vector3d& x = mesh.nodes[n];
-      if (x[0] >= d.box[0] - tol && x[0] <= d.box[1] + tol && x[1] >= d.box[2] - tol && x[1] <= d.box[3] + tol)
+      const bool in_z = d.box.size() < 6 || (x[2] >= d.box[4] - tol && x[2] <= d.box[5] + tol);
+      if (x[0] >= d.box[0] - tol && x[0] <= d.box[1] + tol && x[1] >= d.box[2] - tol && x[1] <= d.box[3] + tol && in_z)
         nodes.push_back(n);
     }
     mesh.node_sets[d.name] = nodes;

@@ -360,8 +360,8 @@ TimeFunction read_amplitude(const Reader& r, const Setting& load, double T) {
   return f;
 }
 
-/// The box node sets of mesh.node_sets.
-std::vector<NodeSetDef> read_box_sets(const Reader& r, const Setting& m, bool rectangle) {
+/// The box node sets of mesh.node_sets: 4 numbers (x and y ranges, every z), or 6 on a 3D mesh.
+std::vector<NodeSetDef> read_box_sets(const Reader& r, const Setting& m, bool rectangle, int dim) {
   std::vector<NodeSetDef> out;
   if (!m.exists("node_sets")) return out;
   const Setting& sets = m["node_sets"];
@@ -370,14 +370,21 @@ std::vector<NodeSetDef> read_box_sets(const Reader& r, const Setting& m, bool re
     const Setting& s = sets[i];
     if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
     r.only(s, {"name", "box"});
-    NodeSetDef d{r.text(s, "name", "", true), r.fixed<4>(s, "box")};
+    if (!s.exists("box")) r.fail(s, "missing setting 'box'");
+    NodeSetDef d{r.text(s, "name", "", true), r.numbers(s["box"])};
+    const bool z_range = d.box.size() == 6 && dim == 3;
+    if (s["box"].isNumber() || (d.box.size() != 4 && !z_range))
+      r.fail(s["box"], dim == 3 ? "must be an array of 4 numbers [xmin, xmax, ymin, ymax] (every z) or 6 [xmin, xmax, "
+                                  "ymin, ymax, zmin, zmax]"
+                                : "must be an array of 4 numbers [xmin, xmax, ymin, ymax] (a z range needs a 3D mesh)");
     if (d.name.empty()) r.fail(s["name"], "must not be empty");
     const std::vector<std::string>& builtin = rectangle_set_names();
     if (rectangle && std::find(builtin.begin(), builtin.end(), d.name) != builtin.end())
       r.fail(s["name"], "'" + d.name + "' is a node set every rectangle has; give the box set another name");
     for (const NodeSetDef& earlier : out)
       if (earlier.name == d.name) r.fail(s["name"], "a node set named '" + d.name + "' is already defined above");
-    if (d.box[0] > d.box[1] || d.box[2] > d.box[3]) r.fail(s["box"], "needs xmin <= xmax and ymin <= ymax");
+    if (d.box[0] > d.box[1] || d.box[2] > d.box[3] || (z_range && d.box[4] > d.box[5]))
+      r.fail(s["box"], z_range ? "needs xmin <= xmax, ymin <= ymax and zmin <= zmax" : "needs xmin <= xmax and ymin <= ymax");
     out.push_back(d);
   }
   return out;
@@ -412,8 +419,8 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
       r.fail(m["file"], e.what());
     }
     if (p.dimension == 3)
-      for (const char* key : {"rotation", "origin", "node_sets"})
-        if (m.exists(key)) r.fail(m[key], "is 2D only for now: place a 3D mesh and name its node sets in the gmsh file (Physical Surface)");
+      for (const char* key : {"rotation", "origin"})
+        if (m.exists(key)) r.fail(m[key], "is 2D only for now: place a 3D mesh in the gmsh file");
   } else {
     r.only(m, {"origin", "size", "nx", "ny", "nz", "element", "rotation", "node_sets"});
     // [x, y]: the rectangle; [x, y, z]: the box (3D).
@@ -454,7 +461,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
                           short_number(available_memory() / 1e9) + " GB available; use fewer cells");
   }
   p.rotation = r.number(m, "rotation", 0.0);
-  p.node_sets = read_box_sets(r, m, p.file.empty());
+  p.node_sets = read_box_sets(r, m, p.file.empty(), p.dimension);
   return p;
 }
 

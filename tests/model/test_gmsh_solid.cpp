@@ -11,6 +11,7 @@
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -273,6 +274,42 @@ TEST_CASE("gmsh 3D: a plate of gmsh hexahedra peels by one corner like the built
     CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
     CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * sa.Rbar.cwiseAbs().maxCoeff());
   }
+}
+
+TEST_CASE("3D node-set boxes: a z range selects within it, four numbers every z, and a box on a gmsh volume loads "
+          "the plate like its Physical Point",
+          "[gmsh][solid]") {
+  // The built-in box, 5 x 2 x 5 nodes at integer coordinates.
+  const Config box = test::corner_peel(4, {R"(mesh.node_sets=(
+      { name = "back_top_edge"; box = [0.0, 4.0, 1.0, 1.0, 0.0, 0.0]; },
+      { name = "left_top_edge"; box = [0.0, 0.0, 1.0, 1.0]; },
+      { name = "left_top_part"; box = [0.0, 0.0, 1.0, 1.0, 2.0, 4.0]; } ))"});
+  const Mesh m = make_mesh(box);
+  const auto coordinates_of = [&](const std::string& set, int axis) {
+    std::vector<double> c;
+    for (int n : m.node_set(set)) c.push_back(m.nodes[n][axis]);
+    std::sort(c.begin(), c.end());
+    return c;
+  };
+  CHECK(coordinates_of("back_top_edge", 0) == std::vector<double>{0, 1, 2, 3, 4});
+  CHECK(coordinates_of("back_top_edge", 2) == std::vector<double>(5, 0.0));
+  CHECK(coordinates_of("left_top_edge", 2) == std::vector<double>{0, 1, 2, 3, 4});
+  CHECK(coordinates_of("left_top_part", 2) == std::vector<double>{2, 3, 4});
+  for (const std::string set : {"back_top_edge", "left_top_edge", "left_top_part"})
+    for (int n : m.node_set(set)) CHECK(m.nodes[n][1] == 1.0);
+
+  // The gmsh plate lifted at the corner given by a box instead of its Physical Point.
+  const std::string plate = "file = \"" + fixtures + "plate_hex.geo\"; parameters = { n = 4.0; };";
+  const Config named = test::corner_peel(4, fixed_steps, "mesh = { " + plate + " };");
+  std::vector<std::string> by_box = fixed_steps;
+  by_box.push_back(R"(loads=({ node_set = "corner"; type = "displacement"; component = "y"; value = 0.15; }))");
+  const Config boxed = test::corner_peel(
+      4, by_box, "mesh = { " + plate + " node_sets = ( { name = \"corner\"; box = [0.0, 0.0, 1.0, 1.0, 0.0, 0.0]; } ); };");
+  const Mesh mb = make_mesh(boxed);
+  REQUIRE(mb.node_set("corner") == mb.node_set("top_left_back"));
+  const RunResult a = Simulation(named).run(), b = Simulation(boxed).run();
+  CHECK(a.snapshots.back().beta.minCoeff() < 0.5);  // the peel has begun
+  CHECK((a.snapshots.back().beta - b.snapshots.back().beta).cwiseAbs().maxCoeff() == 0.0);
 }
 
 TEST_CASE("gmsh 3D: a bad volume mesh is refused, naming the file and the physical group", "[gmsh][solid]") {

@@ -18,7 +18,7 @@ namespace rccm {
 /// A named set of mesh nodes selected by a box [xmin, xmax, ymin, ymax] (mm).
 struct NodeSetDef {
   std::string name;
-  std::array<double, 4> box{};
+  std::vector<double> box;  // [xmin, xmax, ymin, ymax] (every z), or [..., zmin, zmax] in 3D
 };
 
 enum class ElementType { T3, Q4, H8 };

@@ -13,8 +13,8 @@ namespace rccm {
 /// physical group of a mesh problem.
 Mesh make_mesh(const Config& cfg);
 
-/// Adds a node set per box (nodes within [xmin, xmax] x [ymin, ymax], to round-off); a box
-/// may not take the name of an existing set.
+/// Adds a node set per box (nodes within [xmin, xmax] x [ymin, ymax], and [zmin, zmax] when the
+/// box has 6 numbers, to round-off); a box may not take the name of an existing set.
 void add_box_sets(Mesh& mesh, const std::vector<NodeSetDef>& boxes);
 
 /// Turns the mesh by `degrees` counter-clockwise about `origin` and records it as its placement.
