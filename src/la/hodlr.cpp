@@ -381,6 +381,9 @@ struct HodlrSolver::Node {
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance;  // I + Vt X
 
   Eigen::MatrixXd solve(const Eigen::Ref<const Eigen::MatrixXd>& B) const {
+    // No columns (a rank-zero block's factor): Eigen's triangular solve would bind a reference
+    // to the empty matrix's first coefficient (undefined behaviour, found by UBSan).
+    if (B.cols() == 0) return Eigen::MatrixXd(B.rows(), 0);
     if (!first) return lu.solve(B);
     const Eigen::Index n2 = B.rows() - n1, r1 = X1.cols();
     Eigen::MatrixXd z(B.rows(), B.cols());
