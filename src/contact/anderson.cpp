@@ -26,6 +26,10 @@ void AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen:
   const auto F = dF_.leftCols(count_);
   Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(F);
   qr.setThreshold(1e-10);
+  // No difference left at all (a sweep that repeats the same step: stagnation at round-off)
+  // leaves nothing to combine, and the solve of a rank-0 factorization is not finite: the
+  // sweep's iterate stands.
+  if (qr.rank() == 0) return;
   const Eigen::VectorXd gamma = qr.solve(f);
   y.noalias() -= dG_.leftCols(count_) * gamma;
   u.noalias() -= dU_.leftCols(count_) * gamma;

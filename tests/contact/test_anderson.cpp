@@ -73,3 +73,24 @@ TEST_CASE("Anderson mixing with a short history still converges, and faster than
   CHECK(plain <= 2000);
   CHECK(mixed < plain / 2);
 }
+
+TEST_CASE("Anderson mixing of a sweep that repeats the same step (every difference zero) leaves the sweep's iterate",
+          "[anderson]") {
+  // A sweep stagnating at round-off can move y by the very same step each time: f - f_prev
+  // is exactly zero, nothing is left to combine, and the least-squares solve of a rank-0
+  // factorization is not finite (FC2D_SliderCrankLagrangian00000 once turned to NaN so).
+  AndersonMixing anderson(5);
+  Eigen::VectorXd y = Eigen::VectorXd::Constant(4, 0.07);
+  const Eigen::VectorXd u = Eigen::VectorXd::Constant(4, 12.0);
+  Eigen::VectorXd step(4);
+  step << 1e-17, -3e-18, 2e-16, 0;
+  for (int k = 0; k < 6; ++k) {
+    const Eigen::VectorXd y_in = y;
+    y = y_in + step;
+    Eigen::VectorXd u_mixed = u;
+    anderson.mix(y_in, y, u_mixed);
+    INFO("sweep " << k);
+    REQUIRE(y == y_in + step);
+    REQUIRE(u_mixed == u);
+  }
+}

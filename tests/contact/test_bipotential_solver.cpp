@@ -290,3 +290,37 @@ TEST_CASE("a solve stopped by solver.max_iterations leaves a consistent state fo
       CHECK((s.y - E.cwiseProduct(s.u) - s.Rbar).norm() <= 1e-12 * (1 + s.y.norm()));
     }
 }
+
+TEST_CASE("a singular W (two contacts at one point, Siconos' FC2D_SliderCrankLagrangian00000): the sweeps stay finite",
+          "[solver]") {
+  // Siconos' slider-crank problem (numerics/src/FrictionContact/test/data/), its (n, t) pairs
+  // written here as ours (t, n): the two contacts share their normal rows, W is singular, and
+  // the sweeps stagnate at round-off. They used to turn to NaN there (Anderson's mix of zero
+  // differences); now they stop unconverged with finite numbers, or converge.
+  Eigen::MatrixXd W(4, 4);
+  W << 2.365081445699369169233250e+02, -4.642662921766745967033785e+02, 2.365081445699369169233250e+02,
+      4.616596337492514976474922e+02,  //
+      -4.642665883420582986218506e+02, 9.365610022253570150496671e+02, -4.642665883420582986218506e+02,
+      -9.152908496264951736520743e+02,  //
+      2.365081445699369169233250e+02, -4.642662921766745967033785e+02, 2.365081445699369169233250e+02,
+      4.616596337492514976474922e+02,  //
+      4.616593375838677957290201e+02, -9.152908496264951736520743e+02, 4.616593375838677957290201e+02,
+      9.365610022253570150496671e+02;
+  Eigen::VectorXd q(4), mu(2);
+  q << -8.407368208001527065675873e+00, -1.179087309965789476251530e+00, -8.407368208001527065675873e+00,
+      -1.179087309965789476251530e+00;
+  mu << 0.01, 0.01;
+  const PlainContactProblem plain{2, std::make_shared<DenseDelassus>(W), q, mu};
+  const ContactProblem pb = from_plain(plain);  // points into `plain`
+  SolverParams p = params(SweepForm::GaussSeidel, true);
+  p.max_iterations = 300;  // past the 200 Anderson sweeps
+  const ContactSolution s = BipotentialSolver(p).solve(pb, {}, {});
+  INFO("sweeps " << s.iterations << " residual " << s.residual);
+  REQUIRE(s.Rbar.allFinite());
+  REQUIRE(s.u.allFinite());
+  REQUIRE(std::isfinite(s.residual));
+  // Whether converged or not, the contacts push (Signorini) and the normal rows close.
+  CHECK(s.Rbar[1] > 0);
+  CHECK(s.Rbar[3] > 0);
+  CHECK(std::abs(s.u[1]) <= 1e-6 * std::abs(q[1]));
+}
