@@ -38,7 +38,7 @@ std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) 
       std::ostringstream m;
       m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
         << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
-      throw SolveError(m.str());
+      throw SolveError(m.str(), i);
     }
     b.M = A.inverse();
     b.Wb = b.M * b.Wii;

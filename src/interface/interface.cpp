@@ -10,11 +10,6 @@
 
 namespace rccm {
 
-namespace {
-
-RccmLaw law_of(const InterfaceParams& p) { return {p.Cn, p.Ct, p.w, p.alpha, p.mu}; }
-
-/// A point or vector in a message: (x, y), or (x, y, z) on a 3D mesh.
 std::string point(const Eigen::Vector3d& x, int dim) {
   std::ostringstream m;
   m << "(" << x.x() << ", " << x.y();
@@ -22,6 +17,10 @@ std::string point(const Eigen::Vector3d& x, int dim) {
   m << ")";
   return m.str();
 }
+
+namespace {
+
+RccmLaw law_of(const InterfaceParams& p) { return {p.Cn, p.Ct, p.w, p.alpha, p.mu}; }
 
 /// The contact pairs of one config interface, built node by node of its boundary set.
 class PairBuilder {

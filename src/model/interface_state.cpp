@@ -33,6 +33,7 @@ ContactSolution solve_contact(const Model& model, ContactSolver& solver, double 
   } catch (const SolveError& e) {
     std::ostringstream m;
     m << "t = " << t << " s: " << e.what();
+    if (e.node >= 0) m << " (" << model.locate(e.node) << ")";
     throw SolveError(m.str());
   }
   const long debonded = (beta.array() <= 0.0).count();
@@ -42,7 +43,7 @@ ContactSolution solve_contact(const Model& model, ContactSolver& solver, double 
   const double umax = s.u.cwiseAbs().maxCoeff(&worst);
   if (!s.u.allFinite() || !s.Rbar.allFinite() || umax > model.size()) {
     std::ostringstream m;
-    m << "t = " << t << " s: the interface displacement at contact node " << pb.layout.pairs(worst) << " is " << umax
+    m << "t = " << t << " s: the interface displacement at " << model.locate(pb.layout.pairs(worst)) << " is " << umax
       << " mm, more than the body's size (" << model.size() << " mm): nothing holds the body there (" << debonded
       << " of " << beta.size() << " contact nodes have beta = 0); restrain it with a prescribed displacement, keep "
          "beta0 > 0, or reduce the load";
@@ -51,7 +52,7 @@ ContactSolution solve_contact(const Model& model, ContactSolver& solver, double 
   if (!s.converged) {
     std::ostringstream m;
     m << "t = " << t << " s: the contact solve did not converge in " << s.iterations << " sweeps (scaled residual "
-      << s.residual << " at contact node " << s.worst_node << "; " << debonded << " of " << beta.size()
+      << s.residual << " at " << model.locate(s.worst_node) << "; " << debonded << " of " << beta.size()
       << " contact nodes have beta = 0";
     if (2 * debonded > beta.size()) m << ": the body may no longer be held";
     m << "); " << solver.failure_advice();

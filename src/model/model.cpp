@@ -202,6 +202,13 @@ Eigen::VectorXd Model::initial_beta() const {
   return beta;
 }
 
+std::string Model::locate(int i) const {
+  if (i < 0 || i >= interface_.size()) return "contact node " + std::to_string(i);  // never fail while reporting
+  const int n = interface_.pairs[i].node;
+  return "contact node " + std::to_string(i) + " (mesh node " + std::to_string(n) + " at " +
+         point(mesh_.nodes[n], mesh_.dim) + ")";
+}
+
 ContactProblem Model::contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& u_ref) const {
   const Layout& L = interface_.layout;
   ContactProblem pb;

@@ -55,7 +55,7 @@ void BetaOde::check_finite(double t, const Eigen::VectorXd& beta, const char* wh
   for (int i = 0; i < size(); ++i)
     if (!std::isfinite(beta[i])) {
       std::ostringstream m;
-      m << "step " << step_ + 1 << ", t = " << t << " s: " << what << " beta at contact node " << i << " is "
+      m << "step " << step_ + 1 << ", t = " << t << " s: " << what << " beta at " << model_.locate(i) << " is "
         << beta[i] << ": the integrator diverged; tighten integrator.rtol or lower integrator.max_step";
       throw SolveError(m.str());
     }
@@ -64,8 +64,8 @@ void BetaOde::check_finite(double t, const Eigen::VectorXd& beta, const char* wh
 std::vector<std::string> BetaOde::warnings() const {
   if (excursion_.size <= beta_slack) return {};
   std::ostringstream m;
-  m << "the integrator gave beta outside [0, previous beta] by up to " << excursion_.size << " (contact node "
-    << excursion_.node << ", t = " << excursion_.t << " s); it was clamped, and the damage there is not "
+  m << "the integrator gave beta outside [0, previous beta] by up to " << excursion_.size << " ("
+    << model_.locate(excursion_.node) << ", t = " << excursion_.t << " s); it was clamped, and the damage there is not "
     << "time-accurate: tighten integrator.rtol or take more steps";
   return {m.str()};
 }

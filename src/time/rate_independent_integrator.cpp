@@ -19,8 +19,8 @@ void RateIndependentIntegrator::step(double t_new) {
     if (k >= max_iterations_) {
       std::ostringstream m;
       m << "t = " << t_new << " s, step " << ode_.steps() + 1 << ": the rate-independent fixed point did not "
-        << "converge in " << max_iterations_ << " iterations (change of beta " << change << " at contact node "
-        << node << "); raise integrator.fixed_point_iterations or loosen integrator.fixed_point_tolerance ("
+        << "converge in " << max_iterations_ << " iterations (change of beta " << change << " at "
+        << ode_.locate(int(node)) << "); raise integrator.fixed_point_iterations or loosen integrator.fixed_point_tolerance ("
         << tolerance_ << ")";
       throw SolveError(m.str());
     }

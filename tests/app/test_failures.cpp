@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <regex>
 
 using namespace rccm;
 namespace fs = std::filesystem;
@@ -37,6 +38,22 @@ Failure run_to_failure(const Config& cfg) {
     f.message = e.what();
   }
   return f;
+}
+
+/// Every "contact node i (mesh node n at (x, y))" of `message` is pair i of the model of
+/// `cfg`: n its mesh node, (x, y) that node's point. Returns how many there are.
+int check_located(const std::string& message, const Config& cfg) {
+  const Model model = test::make_model(cfg);
+  const std::regex place(R"(contact node (\d+) \(mesh node (\d+) at \(([^,]+), ([^)]+)\)\))");
+  int found = 0;
+  for (std::sregex_iterator it(message.begin(), message.end(), place), end; it != end; ++it, ++found) {
+    const int i = std::stoi((*it)[1]), n = std::stoi((*it)[2]);
+    REQUIRE(i < model.contact_nodes());
+    CHECK(model.interface().pairs[i].node == n);
+    CHECK(std::stod((*it)[3]) == Approx(model.mesh().nodes[n].x()).margin(1e-12));
+    CHECK(std::stod((*it)[4]) == Approx(model.mesh().nodes[n].y()).margin(1e-12));
+  }
+  return found;
 }
 
 /// B1 with Euler and a contact solver allowed too few sweeps (8, no exact active-set step):
@@ -69,6 +86,7 @@ TEST_CASE("a contact solve that does not converge stops the run and says where a
   CHECK_THAT(f.message, Catch::Contains(step));
   CHECK_THAT(f.message, Catch::Contains("did not converge in 8 sweeps (scaled residual"));
   CHECK_THAT(f.message, Catch::Contains("at contact node"));
+  CHECK(check_located(f.message, starved_b1(dir)) == 1);
   CHECK_THAT(f.message, Catch::Contains("raise solver.max_iterations"));
 
   // The results up to the last accepted step are intact: one complete line per step, the
@@ -87,14 +105,16 @@ TEST_CASE("ARKODE cuts its step when a stage's contact solve fails, and says so 
           "[failure]") {
   // A bonded block pulled by a force: the adhesion wears off and the block comes loose.
   const std::string dir = fs::temp_directory_path() / "rccm_failure_arkode";
-  const Failure f = run_to_failure(
-      load_config(RCCM_SOURCE_DIR "/tests/stops/comes_loose_halfway.cfg", {"output.directory=\"" + dir + "\""}));
+  const Config cfg =
+      load_config(RCCM_SOURCE_DIR "/tests/stops/comes_loose_halfway.cfg", {"output.directory=\"" + dir + "\""});
+  const Failure f = run_to_failure(cfg);
   REQUIRE(f.last_step > 20);
   // ARKODE retried with smaller steps (the failure was recoverable) before it gave up.
   CHECK_THAT(f.message, Catch::Contains("repeated recoverable right-hand side function errors"));
   CHECK_THAT(f.message, Catch::Contains("after step " + std::to_string(f.last_step)));
   CHECK_THAT(f.message, Catch::Contains("last contact failure: step " + std::to_string(f.last_step + 1) + ", t = "));
   CHECK_THAT(f.message, Catch::Contains("at contact node"));
+  CHECK(check_located(f.message, cfg) >= 1);
   CHECK_THAT(f.message, Catch::Contains("more than the body's size"));
   CHECK_THAT(f.message, Catch::Contains("reduce the load"));
   CHECK(complete_lines(dir + "/history.csv") == static_cast<std::size_t>(f.last_step + 2));
@@ -127,9 +147,10 @@ time = { T = 1.0; };
     return std::string("accepted");
   };
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
-  CHECK_THAT(message(0.5, nan, false), Catch::Contains("step 1, t = 0.5 s: the stage value of beta at contact node 2 is nan"));
-  CHECK_THAT(message(0.5, -inf, false), Catch::Contains("contact node 2 is -inf: the integrator diverged"));
-  CHECK_THAT(message(0.5, nan, true), Catch::Contains("the accepted beta at contact node 2 is nan"));
+  CHECK_THAT(message(0.5, nan, false),
+             Catch::Contains("step 1, t = 0.5 s: the stage value of beta at contact node 2 (mesh node 2 at (2, 0)) is nan"));
+  CHECK_THAT(message(0.5, -inf, false), Catch::Contains("(2, 0)) is -inf: the integrator diverged"));
+  CHECK_THAT(message(0.5, nan, true), Catch::Contains("the accepted beta at contact node 2 (mesh node 2 at (2, 0)) is nan"));
   CHECK(ode.steps() == 0);  // nothing was committed
   // A stage value out of [0, 1] (a Newton iterate) is used clamped: no error.
   CHECK(message(0.5, -0.01, false) == "accepted");
@@ -145,7 +166,8 @@ time = { T = 1.0; };
   CHECK(message(0.8, -0.01, true) == "accepted");
   CHECK(ode.committed().beta[2] == 0.0);
   REQUIRE(ode.warnings().size() == 1);
-  CHECK_THAT(ode.warnings()[0], Catch::Contains("outside [0, previous beta] by up to 0.25 (contact node 2, t = 0.6 s)"));
+  CHECK_THAT(ode.warnings()[0],
+             Catch::Contains("outside [0, previous beta] by up to 0.25 (contact node 2 (mesh node 2 at (2, 0)), t = 0.6 s)"));
 }
 
 TEST_CASE("a run that crawls says so, and ARKODE's hints follow the scheme in use", "[failure]") {

@@ -2,6 +2,8 @@
 // satisfies the law R = proj(R - rho s(Wb R + c), K_mubar), is the limit of the iterated
 // predictor-corrector, and lands in each regime where the closed form says.
 #include "rccm/contact/pair_block.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/contact/delassus.hpp"
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
@@ -76,4 +78,27 @@ TEST_CASE("the exact 2D local solve in each regime, by hand", "[pair-block]") {
   CHECK((R - Eigen::Vector2d(-0.5, 1.0)).norm() < 1e-15);  // R_t = -mubar R_n, against the slip 1.5
   CHECK(solve_pair<2>(b, Eigen::Vector2d(-2.0, -1.0), R, 100, 1e-12, 0, 0) == Status::Slide);
   CHECK((R - Eigen::Vector2d(0.5, 1.0)).norm() < 1e-15);
+}
+
+TEST_CASE("a pair whose spring cancels its flexibility (det(I - W_ii E) = 0) is refused, naming it", "[pair-block]") {
+  // Three pairs, W0 diagonal-dominant; pair 1's normal spring E = 1 / W0_nn: nothing holds it.
+  Eigen::MatrixXd W(6, 6);
+  for (int r = 0; r < 6; ++r)
+    for (int c = 0; c < 6; ++c) W(r, c) = r == c ? 2.0 : 0.1;
+  const DenseDelassus W0(W);
+  ContactProblem pb;
+  pb.layout = Layout{2};
+  pb.W0 = &W0;
+  pb.q0 = pb.Dbeta = pb.u_ref = Eigen::VectorXd::Zero(6);
+  pb.D1 = Eigen::VectorXd::Constant(6, 0.1);
+  pb.D1[3] = 1.0 / W(3, 3);
+  pb.D1[2] = 0;
+  pb.mubar = pb.g0 = Eigen::VectorXd::Zero(3);
+  try {
+    make_blocks<2>(pb, RhoRule::Eigen);
+    FAIL("the pair was accepted");
+  } catch (const SolveError& e) {
+    CHECK(e.node == 1);
+    CHECK_THAT(e.what(), Catch::Contains("contact node 1 has no stiffness left"));
+  }
 }

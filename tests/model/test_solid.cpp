@@ -170,6 +170,22 @@ TEST_CASE("a 3D interface lists its pairs in bisection order: every bisection of
   CHECK(patches == 15);
 }
 
+TEST_CASE("a message names a contact node by its pair index, its mesh node and its point: in 3D, where the "
+          "pair order is not the mesh's",
+          "[solid]") {
+  const Model model = test::make_model(test::corner_peel(8));
+  int reordered = 0;
+  for (int i = 0; i < model.contact_nodes(); ++i) {
+    const int n = model.interface().pairs[i].node;
+    const Eigen::Vector3d& x = model.mesh().nodes[n];
+    std::ostringstream want;
+    want << "contact node " << i << " (mesh node " << n << " at (" << x.x() << ", " << x.y() << ", " << x.z() << "))";
+    CHECK(model.locate(i) == want.str());
+    reordered += n != model.interface().pairs[0].node + i;
+  }
+  CHECK(reordered > model.contact_nodes() / 2);  // the check above is not one of i alone
+}
+
 // The corner lifted 0.03 mm/s for 5 s, by sweeps (the 3D exact step costs more here: README).
 TEST_CASE("a square plate peeled by one corner: symmetric about the diagonal, a curved front, beta never rises", "[solid]") {
   const Config cfg = test::corner_peel(8, {"output.times=[2.5]"});

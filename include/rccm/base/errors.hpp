@@ -16,9 +16,11 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// A solve that failed: the message names time, step, node and a suggestion.
+/// A solve that failed: the message names time, step, node and a suggestion. `node`: the
+/// contact node it concerns, for a caller that knows where that node is (Model::locate).
 struct SolveError : std::runtime_error {
-  using std::runtime_error::runtime_error;
+  explicit SolveError(const std::string& what, int node = -1) : std::runtime_error(what), node(node) {}
+  int node;
 };
 
 /// A result file that could not be written (disk full, directory removed): the run stops.

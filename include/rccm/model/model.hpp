@@ -34,6 +34,10 @@ class Model {
   const Interface& interface() const { return interface_; }
   const Condensation& condensation() const { return *condensation_; }
   int contact_nodes() const { return interface_.size(); }
+  /// Contact node i in a message, findable in the results: "contact node i (mesh node n at
+  /// (x, y))". i is the interface's point id in the .vtp and the "node" column of its CSVs;
+  /// n the body's point id in the .vtu.
+  std::string locate(int i) const;
   /// Who solves the body's K0 (solver.linear): "CHOLMOD", "PETSc MUMPS on 2 processes", ...
   std::string linear_solver() const { return body_->solver_name(); }
   /// The largest extent of the mesh, mm: no small-strain displacement comes near it.

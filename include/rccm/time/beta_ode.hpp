@@ -59,6 +59,7 @@ class BetaOde final : public BetaSystem {
   void rate_independent_beta(double t, const Eigen::VectorXd& beta, Eigen::Ref<Eigen::VectorXd> out) override;
   /// Also solves the contact at the accepted state, commits it and notifies the observer.
   void accept(double t, Eigen::Ref<Eigen::VectorXd> beta) override;
+  std::string locate(int i) const override { return model_.locate(i); }
 
   /// From now on each accepted step also gives the state halfway through it: beta from the
   /// cubic Hermite interpolant of (beta, f) at both ends (the accuracy of a 4th-order scheme),

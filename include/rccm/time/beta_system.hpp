@@ -7,6 +7,8 @@
 
 #include <Eigen/Core>
 
+#include <string>
+
 namespace rccm {
 
 class BetaSystem {
@@ -36,6 +38,9 @@ class BetaSystem {
   /// Accepts (t, beta): beta is clamped to [0, committed beta] in place (it never increases)
   /// and becomes the committed state.
   virtual void accept(double t, Eigen::Ref<Eigen::VectorXd> beta) = 0;
+
+  /// Node i in a message (Model::locate: where it is in the results).
+  virtual std::string locate(int i) const { return "contact node " + std::to_string(i); }
 };
 
 }  // namespace rccm
