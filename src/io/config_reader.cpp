@@ -152,13 +152,19 @@ class Reader {
     return out;
   }
 
-  template <std::size_t N>
-  std::array<double, N> fixed(const Setting& g, const char* name) const {
+  /// A required array of numbers whose length is one of `lengths`; otherwise it "must be `what`".
+  std::vector<double> array(const Setting& g, const char* name, const std::vector<std::size_t>& lengths,
+                            const std::string& what) const {
     if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
     const Setting& s = g[name];
     const std::vector<double> v = numbers(s);
-    if (v.size() != N || s.isNumber())
-      fail(s, "must be an array of " + std::to_string(N) + " numbers");
+    if (s.isNumber() || std::find(lengths.begin(), lengths.end(), v.size()) == lengths.end()) fail(s, "must be " + what);
+    return v;
+  }
+
+  template <std::size_t N>
+  std::array<double, N> fixed(const Setting& g, const char* name) const {
+    const std::vector<double> v = array(g, name, {N}, "an array of " + std::to_string(N) + " numbers");
     std::array<double, N> out{};
     std::copy(v.begin(), v.end(), out.begin());
     return out;
@@ -166,11 +172,8 @@ class Reader {
 
   /// A point or a direction of the mesh's dimension: `dim` numbers (z = 0 in 2D).
   std::array<double, 3> coordinates(const Setting& g, const char* name, int dim) const {
-    if (!g.exists(name)) fail(g, std::string("missing setting '") + name + "'");
-    const Setting& s = g[name];
-    const std::vector<double> v = numbers(s);
-    if (static_cast<int>(v.size()) != dim || s.isNumber())
-      fail(s, "must be an array of " + std::to_string(dim) + " numbers (the mesh is " + std::to_string(dim) + "D)");
+    const std::string n = std::to_string(dim);
+    const std::vector<double> v = array(g, name, {std::size_t(dim)}, "an array of " + n + " numbers (the mesh is " + n + "D)");
     std::array<double, 3> out{};
     std::copy(v.begin(), v.end(), out.begin());
     return out;
@@ -370,13 +373,13 @@ std::vector<NodeSetDef> read_box_sets(const Reader& r, const Setting& m, bool re
     const Setting& s = sets[i];
     if (!s.isGroup()) r.fail(s, "must be a group { name = ...; box = [xmin, xmax, ymin, ymax]; }");
     r.only(s, {"name", "box"});
-    if (!s.exists("box")) r.fail(s, "missing setting 'box'");
-    NodeSetDef d{r.text(s, "name", "", true), r.numbers(s["box"])};
-    const bool z_range = d.box.size() == 6 && dim == 3;
-    if (s["box"].isNumber() || (d.box.size() != 4 && !z_range))
-      r.fail(s["box"], dim == 3 ? "must be an array of 4 numbers [xmin, xmax, ymin, ymax] (every z) or 6 [xmin, xmax, "
-                                  "ymin, ymax, zmin, zmax]"
-                                : "must be an array of 4 numbers [xmin, xmax, ymin, ymax] (a z range needs a 3D mesh)");
+    const bool solid = dim == 3;
+    NodeSetDef d{r.text(s, "name", "", true),
+                 r.array(s, "box", solid ? std::vector<std::size_t>{4, 6} : std::vector<std::size_t>{4},
+                         solid ? "an array of 4 numbers [xmin, xmax, ymin, ymax] (every z) or 6 [xmin, xmax, ymin, ymax, "
+                                 "zmin, zmax]"
+                               : "an array of 4 numbers [xmin, xmax, ymin, ymax] (a z range needs a 3D mesh)")};
+    const bool z_range = d.box.size() == 6;
     if (d.name.empty()) r.fail(s["name"], "must not be empty");
     const std::vector<std::string>& builtin = rectangle_set_names();
     if (rectangle && std::find(builtin.begin(), builtin.end(), d.name) != builtin.end())
