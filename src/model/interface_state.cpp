@@ -33,7 +33,7 @@ ContactSolution solve_contact(const Model& model, ContactSolver& solver, double 
   } catch (const SolveError& e) {
     std::ostringstream m;
     m << "t = " << t << " s: " << e.what();
-    if (e.node >= 0) m << " (" << model.locate(e.node) << ")";
+    if (e.node >= 0) m << "; at " << model.locate(e.node);
     throw SolveError(m.str());
   }
   const long debonded = (beta.array() <= 0.0).count();
