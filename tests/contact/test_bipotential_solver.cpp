@@ -324,3 +324,33 @@ TEST_CASE("a singular W (two contacts at one point, Siconos' FC2D_SliderCrankLag
   CHECK(s.Rbar[3] > 0);
   CHECK(std::abs(s.u[1]) <= 1e-6 * std::abs(q[1]));
 }
+
+TEST_CASE("the sweeps' tolerance is relative to the largest force, the adhesive ones included", "[solver]") {
+  // Pair 0 is held open by its spring (u_n = 1 mm, Radh_n = -1e6 N); pairs 1 and 2 touch with
+  // reactions of 5e-7 N, coupled through W0 (c = 0.7: plain sweeps contract by c^2 = 0.49).
+  // The verifying pass scales a pair's residual by at least tuning::residual_level_floor (1e-8)
+  // of the largest force, 1e6 N, adhesive included: the reactions are settled once their error
+  // is below 1e-10 x 1e-2 N, log(1e-12 / 5e-7) / log(0.49) = 18.4 sweeps from zero. Scaled by
+  // the largest reaction alone (5e-7 N) they would need 1e-10 of their own size: 32 sweeps.
+  Eigen::MatrixXd W = Eigen::MatrixXd::Identity(6, 6);
+  W(3, 5) = W(5, 3) = 0.7;
+  const DenseDelassus W0(W);
+  ContactProblem pb;
+  pb.layout = Layout{2};
+  pb.W0 = &W0;
+  pb.q0 = Eigen::VectorXd::Zero(6);
+  pb.q0 << 0, 1.0, 0, -8.5e-7, 0, -8.5e-7;
+  pb.D1 = pb.Dbeta = Eigen::VectorXd::Constant(6, 1e6);  // beta = 1: E = 0, the springs in W0
+  pb.u_ref = Eigen::VectorXd::Zero(6);
+  pb.mubar = pb.g0 = Eigen::VectorXd::Zero(3);
+  SolverParams p = plain_sweeps();
+  p.max_iterations = 1000;
+  const ContactSolution s = BipotentialSolver(p).solve(pb, {}, {});
+  INFO("sweeps " << s.iterations << ", Rbar " << s.Rbar.transpose());
+  REQUIRE(s.converged);
+  CHECK(s.Rbar[1] == 0.0);
+  CHECK(std::abs(s.Rbar[3] - 5e-7) <= 1e-10);  // the tolerance's 1e-12 N, over 1 - c^2 and a sweep
+  CHECK(std::abs(s.Rbar[5] - 5e-7) <= 1e-10);
+  CHECK(s.iterations >= 17);
+  CHECK(s.iterations <= 20);
+}
