@@ -213,13 +213,8 @@ class Reader {
     if (volume < 0 && cell.size() == 4 && m_.dim == 3) std::swap(cell[1], cell[2]);
     if (volume < 0 && cell.size() == 8) std::swap(cell[1], cell[3]), std::swap(cell[5], cell[7]);
     if (volume == 0 || signed_measure(cell) <= 0) {
-      const Eigen::Vector3d& x = m_.nodes[cell[0]];
-      std::ostringstream m;
-      m << physical(m_.dim) << " '" << group << "' has a cell of zero " << (m_.dim == 2 ? "area" : "volume") << " at ("
-        << x.x() << ", " << x.y();
-      if (m_.dim == 3) m << ", " << x.z();
-      m << ")";
-      fail(m.str());
+      fail(physical(m_.dim) + " '" + group + "' has a cell of zero " + (m_.dim == 2 ? "area" : "volume") + " at " +
+           point(m_.nodes[cell[0]], m_.dim));
     }
   }
 

@@ -8,8 +8,17 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <sstream>
 
 namespace rccm {
+
+std::string point(const Eigen::Vector3d& x, int dim) {
+  std::ostringstream m;
+  m << "(" << x.x() << ", " << x.y();
+  if (dim == 3) m << ", " << x.z();
+  m << ")";
+  return m.str();
+}
 
 std::vector<std::string> Mesh::node_set_names() const {
   std::vector<std::string> names;

@@ -10,14 +10,6 @@
 
 namespace rccm {
 
-std::string point(const Eigen::Vector3d& x, int dim) {
-  std::ostringstream m;
-  m << "(" << x.x() << ", " << x.y();
-  if (dim == 3) m << ", " << x.z();
-  m << ")";
-  return m.str();
-}
-
 namespace {
 
 RccmLaw law_of(const InterfaceParams& p) { return {p.Cn, p.Ct, p.w, p.alpha, p.mu}; }

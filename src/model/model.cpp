@@ -31,8 +31,8 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
       if (distance(j) < distance(best)) best = j;
     if (distance(best) > reach) {
       std::ostringstream m;
-      m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point ("
-        << p.x() << ", " << p.y() << ") is " << distance(best) << " mm from the nearest " << what;
+      m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
+        << point(p, mesh.dim) << " is " << distance(best) << " mm from the nearest " << what;
       throw InputError(m.str());
     }
     out.push_back(static_cast<int>(best));
@@ -165,8 +165,8 @@ void Model::check_prescribed_gaps(const Config& cfg) const {
         for (int x = 0; x < mesh_.dim; ++x) u_n += c.frame.n[x] * lc.amplitude(t) * lc.displacement[mesh_.dof(c.node, x)];
       if (c.g0 + u_n < -1e-9 * size_) {
         std::ostringstream m;
-        m << cfg.where("loads") << ": the prescribed displacement pushes contact node " << i << " ("
-          << mesh_.nodes[c.node].x() << ", " << mesh_.nodes[c.node].y() << ") into the foundation by " << -(c.g0 + u_n)
+        m << cfg.where("loads") << ": the prescribed displacement pushes contact node " << i << " "
+          << point(mesh_.nodes[c.node], mesh_.dim) << " into the foundation by " << -(c.g0 + u_n)
           << " mm at t = " << t << " s; a node on the interface may be moved away from the foundation (or along "
           << "it), not into it";
         throw InputError(m.str());

@@ -11,6 +11,9 @@
 
 namespace rccm {
 
+/// A point or vector in a message: (x, y), or (x, y, z) on a 3D mesh.
+std::string point(const Eigen::Vector3d& x, int dim);
+
 /// Where points given in the mesh source's own frame (node-set boxes, watch points) lie in
 /// the global frame of the mesh: x -> origin + rotation (x - origin).
 struct Placement {

@@ -13,13 +13,9 @@
 
 #include <Eigen/Core>
 
-#include <string>
 #include <vector>
 
 namespace rccm {
-
-/// A point or vector in a message: (x, y), or (x, y, z) on a 3D mesh.
-std::string point(const Eigen::Vector3d& x, int dim);
 
 struct ContactPair {
   int node = -1;       // mesh node of the body the normal points into
