@@ -12,7 +12,7 @@ Mesh make_box(const MeshParams& p) {
   auto id = [nx, ny](int i, int j, int k) { return (k * (ny + 1) + j) * (nx + 1) + i; };
   for (int k = 0; k <= nz; ++k)
     for (int j = 0; j <= ny; ++j)
-      for (int i = 0; i <= nx; ++i) m.nodes.emplace_back(p.origin[0] + i * hx, p.origin[1] + j * hy, k * hz);
+      for (int i = 0; i <= nx; ++i) m.nodes.emplace_back(p.origin[0] + i * hx, p.origin[1] + j * hy, p.origin[2] + k * hz);
 
   for (int k = 0; k < nz; ++k)
     for (int j = 0; j < ny; ++j)
@@ -59,6 +59,7 @@ Mesh make_box(const MeshParams& p) {
         s["all"].push_back(n);
       }
   add_box_sets(m, p.node_sets);
+  place(m, p);
   return m;
 }
 

@@ -20,7 +20,7 @@ Mesh make_mesh(const Config& cfg) {
   } catch (const InputError& e) {
     throw InputError(cfg.where("mesh.node_sets") + ": " + e.what());
   }
-  place(m, cfg.mesh.origin, cfg.mesh.rotation);
+  place(m, cfg.mesh);
   return m;
 }
 
@@ -42,10 +42,11 @@ void add_box_sets(Mesh& mesh, const std::vector<NodeSetDef>& boxes) {
   }
 }
 
-void place(Mesh& mesh, const std::array<double, 2>& origin, double degrees) {
-  mesh.placement.origin = Eigen::Vector3d(origin[0], origin[1], 0.0);
-  mesh.placement.rotation.topLeftCorner<2, 2>() = Eigen::Rotation2Dd(degrees * M_PI / 180.0).toRotationMatrix();
-  if (degrees != 0.0)
+void place(Mesh& mesh, const MeshParams& p) {
+  mesh.placement.origin = Eigen::Vector3d(p.origin[0], p.origin[1], p.origin[2]);
+  const Eigen::Vector3d axis(p.axis[0], p.axis[1], p.axis[2]);
+  mesh.placement.rotation = Eigen::AngleAxisd(p.rotation * M_PI / 180.0, axis).toRotationMatrix();
+  if (p.rotation != 0.0)
     for (Eigen::Vector3d& x : mesh.nodes) x = mesh.placement(x);
 }
 

@@ -60,7 +60,7 @@ Mesh make_rectangle(const MeshParams& p) {
   for (int n = 0; n < m.num_nodes(); ++n) s["all"].push_back(n);
 
   add_box_sets(m, p.node_sets);
-  place(m, p.origin, p.rotation);
+  place(m, p);
   return m;
 }
 

@@ -400,6 +400,21 @@ std::string file_hash(const std::string& path) {
   return std::to_string(text.size()) + ":" + std::to_string(std::hash<std::string>()(text));
 }
 
+/// mesh.rotation: an angle in degrees in 2D (about z); a group { axis = [x, y, z]; angle; } in 3D.
+void read_rotation(const Reader& r, const Setting& m, MeshParams& p) {
+  if (!m.exists("rotation")) return;
+  const Setting& g = m["rotation"];
+  if (p.dim() == 2) {
+    if (g.isGroup()) r.fail(g, "a 2D mesh turns in its plane: give the angle in degrees (rotation = 30.0;)");
+    p.rotation = r.number(m, "rotation");
+    return;
+  }
+  if (!g.isGroup()) r.fail(g, "a 3D mesh turns about an axis: rotation = { axis = [x, y, z]; angle = degrees; }");
+  r.only(g, {"axis", "angle"});
+  p.axis = r.direction(g, "axis", 3);
+  p.rotation = r.number(g, "angle");
+}
+
 MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& config_dir) {
   const Setting& m = r.group(root, "mesh");
   MeshParams p;
@@ -421,9 +436,6 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
     } catch (const InputError& e) {
       r.fail(m["file"], e.what());
     }
-    if (p.dimension == 3)
-      for (const char* key : {"rotation", "origin"})
-        if (m.exists(key)) r.fail(m[key], "is 2D only for now: place a 3D mesh in the gmsh file");
   } else {
     r.only(m, {"origin", "size", "nx", "ny", "nz", "element", "rotation", "node_sets"});
     // [x, y]: the rectangle; [x, y, z]: the box (3D).
@@ -442,17 +454,17 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
       r.check(p.nz >= 1, m["nz"], "must be >= 1", p.nz);
       p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 2));
       if (p.element != ElementType::H8) r.fail(m["element"], "a box (size with 3 numbers) is meshed with \"H8\" cells");
-      if (m.exists("rotation")) r.fail(m["rotation"], "is not available for a box yet (3D)");
     } else {
       if (m.exists("nz")) r.fail(m["nz"], "applies to a box: give size three numbers [x, y, z]");
       p.element = static_cast<ElementType>(r.choice(m, "element", {"T3", "Q4", "H8"}, 0));
       if (p.element == ElementType::H8) r.fail(m["element"], "H8 cells fill a box: give size three numbers [x, y, z] and nz");
     }
   }
-  if (m.exists("origin")) p.origin = r.fixed<2>(m, "origin");
-  for (int k = 0; k < 2; ++k)
-    r.check(std::abs(p.origin[k]) + p.size[k] < 1e15, m.exists("size") ? m["size"] : m, "the mesh must lie within 1e15 mm of 0",
-            p.size[k]);
+  if (m.exists("origin")) p.origin = r.coordinates(m, "origin", p.dim());
+  const std::array<double, 3> extent{p.size[0], p.size[1], p.depth};
+  for (int k = 0; k < p.dim(); ++k)
+    r.check(std::abs(p.origin[k]) + extent[k] < 1e15, m.exists("size") ? m["size"] : m, "the mesh must lie within 1e15 mm of 0",
+            extent[k]);
   if (p.file.empty()) {
     // The assembly's triplets, the matrix and its Cholesky factor (~2.6 kB per unknown at a
     // million unknowns, measured): refused up front rather than failing after minutes.
@@ -463,7 +475,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
                           " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
                           short_number(available_memory() / 1e9) + " GB available; use fewer cells");
   }
-  p.rotation = r.number(m, "rotation", 0.0);
+  read_rotation(r, m, p);
   p.node_sets = read_box_sets(r, m, p.file.empty(), p.dimension);
   return p;
 }

@@ -317,4 +317,17 @@ output = { directory = "b"; checkpoint_steps = 7; };
     INFO(change);
     CHECK(test::config_from_text(base, {change}).settings != fp);
   }
+  // A 3D mesh's placement: each number of its origin and of its turn.
+  const std::string box = R"(
+mesh = { size = [4.0, 1.0, 4.0]; nx = 2; ny = 1; nz = 2; origin = [0.0, 0.0, 0.0]; rotation = { axis = [0.0, 1.0, 0.0]; angle = 10.0; }; };
+material = { E = 69000; nu = 0.3; };
+interface = { boundary = "bottom"; normal = [0.0, 1.0, 0.0]; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.3; };
+loads = ( { node_set = "top_left_back"; type = "displacement"; component = "y"; value = 0.1; } );
+time = { T = 1.0; };
+)";
+  const std::string fp3 = test::config_from_text(box).settings;
+  for (const char* change : {"mesh.origin=[0.0,0.0,1.0]", "mesh.rotation.axis=[0.0,1.0,1.0]", "mesh.rotation.angle=11.0"}) {
+    INFO(change);
+    CHECK(test::config_from_text(box, {change}).settings != fp3);
+  }
 }

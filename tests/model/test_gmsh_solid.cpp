@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <iomanip>
 #include <map>
 
@@ -44,11 +45,13 @@ std::array<long, 3> position_key(const Eigen::Vector3d& x) {
   return {std::lround(1e6 * x.x()), std::lround(1e6 * x.y()), std::lround(1e6 * x.z())};
 }
 
-/// The contact pairs of `m` by their nodes' places, each place seen as Q^T x (Q: how the
-/// mesh was turned from the reference one).
-std::map<std::array<long, 3>, int> pairs_by_position(const Model& m, const Eigen::Matrix3d& Q = Eigen::Matrix3d::Identity()) {
+/// Where a node of a placed mesh was in the reference one.
+using Unplace = std::function<Eigen::Vector3d(const Eigen::Vector3d&)>;
+
+/// The contact pairs of `m` by their nodes' places, each place seen in the reference mesh.
+std::map<std::array<long, 3>, int> pairs_by_position(const Model& m, const Unplace& unplace = [](const Eigen::Vector3d& x) { return x; }) {
   std::map<std::array<long, 3>, int> at;
-  for (int i = 0; i < m.interface().size(); ++i) at[position_key(Q.transpose() * m.mesh().nodes[m.interface().pairs[i].node])] = i;
+  for (int i = 0; i < m.interface().size(); ++i) at[position_key(unplace(m.mesh().nodes[m.interface().pairs[i].node]))] = i;
   return at;
 }
 
@@ -142,6 +145,28 @@ Mesh extrude(const Mesh& plane, double depth) {
 /// its face "bottom", its corner "top_left_back".
 std::string turned_plate(int n, const Eigen::Matrix3d& Q) {
   return write_msh("turned_plate.msh", {{plate_box(n), Eigen::Vector3d::Zero(), "plate", {{"bottom", "bottom"}}, {{"top_left_back", "top_left_back"}}}}, Q);
+}
+
+/// The corner peel `a_cfg` and its placed twin `b_cfg` (the base's normal `n`, the loads turned
+/// alike) give the same beta, R_n, u_n, |R_t| and |u_t| pair by pair, within 1e-8.
+void require_turned_alike(const Config& a_cfg, const Config& b_cfg, const Unplace& unplace, const Eigen::Vector3d& n) {
+  const RunResult a = Simulation(a_cfg).run(), b = Simulation(b_cfg).run();
+  const Model ma = test::make_model(a_cfg), mb = test::make_model(b_cfg);
+  REQUIRE(ma.contact_nodes() == mb.contact_nodes());
+  const auto pair_at = pairs_by_position(mb, unplace);  // the placed mesh's pairs by their place before
+  const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
+  REQUIRE(sa.beta.minCoeff() < 0.5);
+  REQUIRE(sa.beta.maxCoeff() > 0.5);
+  const double R = sa.Rbar.cwiseAbs().maxCoeff(), u = sa.u.cwiseAbs().maxCoeff();
+  for (int i = 0; i < ma.interface().size(); ++i) {
+    const int j = pair_at.at(position_key(ma.mesh().nodes[ma.interface().pairs[i].node]));
+    CHECK((mb.interface().pairs[j].frame.n - n).norm() <= 1e-14);
+    CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
+    CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * R);
+    CHECK(std::abs(std::hypot(sa.Rbar[3 * i], sa.Rbar[3 * i + 1]) - std::hypot(sb.Rbar[3 * j], sb.Rbar[3 * j + 1])) <= 1e-8 * R);
+    CHECK(std::abs(sa.u[3 * i + 2] - sb.u[3 * j + 2]) <= 1e-8 * u);
+    CHECK(std::abs(std::hypot(sa.u[3 * i], sa.u[3 * i + 1]) - std::hypot(sb.u[3 * j], sb.u[3 * j + 1])) <= 1e-8 * u);
+  }
 }
 
 }  // namespace
@@ -328,6 +353,8 @@ TEST_CASE("gmsh 3D: a bad volume mesh is refused, naming the file and the physic
           "Physical Surface 'cube' has the name of another physical group");
 }
 
+namespace {
+
 /// An orthotropic ply (3D) with axis 3 along `axis3` and axis 1 at `angle` degrees from its
 /// reference axis (README "3D"), as a config override.
 std::string ply(const Eigen::Vector3d& axis3, double angle) {
@@ -337,23 +364,36 @@ std::string ply(const Eigen::Vector3d& axis3, double angle) {
   return m.str();
 }
 
+/// The corner peel pulled up by a force at its corner (components add up; prescribed
+/// components would hold the others at 0), as given for the reference plate (`reference`) and
+/// for the plate turned by Q (`turned`: the base's normal Q y, the force turned alike).
+struct CornerPull {
+  static constexpr double F = 200;  // N: the plate's corner region debonds, the rest holds
+  explicit CornerPull(const Eigen::Matrix3d& Q) : n(Q.col(1)) {
+    const Eigen::Vector3d lift = F * n;
+    std::ostringstream normal, loads;
+    normal << std::setprecision(17) << "interface.normal=[" << n.x() << ", " << n.y() << ", " << n.z() << "]";
+    loads << std::setprecision(17) << "loads=(";
+    for (int k = 0; k < 3; ++k)
+      loads << (k ? ", " : "") << "{node_set=\"top_left_back\"; type=\"force\"; component=\"" << "xyz"[k] << "\"; value=" << lift[k] << ";}";
+    loads << ")";
+    reference.push_back("loads=({node_set=\"top_left_back\"; type=\"force\"; component=\"y\"; value=" + std::to_string(F) + ";})");
+    turned.insert(turned.end(), {normal.str(), loads.str()});
+  }
+  Eigen::Vector3d n;  // the turned base's normal
+  std::vector<std::string> reference = fixed_steps, turned = fixed_steps;
+};
+
+const Eigen::Matrix3d oblique = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+
+}  // namespace
+
 TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis gives the same beta, "
           "normal reactions and slip magnitudes, isotropic or an orthotropic ply turned alike",
           "[gmsh][solid]") {
-  // The corner pulled by a force (components add up; prescribed components would hold the
-  // others at 0).
-  const double F = 200;  // N: the plate's corner region debonds, the rest holds
-  const Eigen::Matrix3d Q = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
-  const Eigen::Vector3d n = Q.col(1), lift = F * Q.col(1);  // the base's normal, the force on the corner
-  std::ostringstream normal, loads;
-  normal << std::setprecision(17) << "interface.normal=[" << n.x() << ", " << n.y() << ", " << n.z() << "]";
-  loads << std::setprecision(17) << "loads=(";
-  for (int k = 0; k < 3; ++k)
-    loads << (k ? ", " : "") << "{node_set=\"top_left_back\"; type=\"force\"; component=\"" << "xyz"[k] << "\"; value=" << lift[k] << ";}";
-  loads << ")";
-  std::vector<std::string> a_settings = fixed_steps, b_settings = fixed_steps;
-  a_settings.push_back("loads=({node_set=\"top_left_back\"; type=\"force\"; component=\"y\"; value=" + std::to_string(F) + ";})");
-  b_settings.insert(b_settings.end(), {normal.str(), loads.str()});
+  const Eigen::Matrix3d& Q = oblique;
+  CornerPull pull(Q);
+  const Eigen::Vector3d& n = pull.n;
   if (GENERATE(false, true)) {
     // The ply in the plate's plane: axis 3 along y, axis 1 at 30 degrees from x, (c, 0, -s).
     // Turned: axis 3 along Q y, axis 1 along Q (c, 0, -s), at the angle from the reference
@@ -361,29 +401,37 @@ TEST_CASE("3D rotation invariance: the corner peel turned about an oblique axis 
     const double a = 30 * M_PI / 180;
     const Eigen::Vector3d axis1 = Q * Eigen::Vector3d(std::cos(a), 0, -std::sin(a));
     const Eigen::Vector3d r1 = (Eigen::Vector3d::UnitX() - n.x() * n).normalized(), r2 = n.cross(r1);
-    a_settings.push_back(ply(Eigen::Vector3d::UnitY(), 30));
+    pull.reference.push_back(ply(Eigen::Vector3d::UnitY(), 30));
     REQUIRE(std::abs(n.x()) < 0.9);  // x is the reference of Q y
-    b_settings.push_back(ply(n, std::atan2(axis1.dot(r2), axis1.dot(r1)) * 180 / M_PI));
+    pull.turned.push_back(ply(n, std::atan2(axis1.dot(r2), axis1.dot(r1)) * 180 / M_PI));
   }
-  const Config a_cfg = test::corner_peel(4, a_settings);
-  const Config b_cfg = test::corner_peel(4, b_settings, "mesh = { file = \"" + turned_plate(4, Q) + "\"; };");
-  const RunResult a = Simulation(a_cfg).run(), b = Simulation(b_cfg).run();
-  const Model ma = test::make_model(a_cfg), mb = test::make_model(b_cfg);
-  REQUIRE(ma.contact_nodes() == mb.contact_nodes());
-  const auto pair_at = pairs_by_position(mb, Q);  // the turned plate's pairs by their place before turning
-  const Snapshot &sa = a.snapshots.back(), &sb = b.snapshots.back();
-  REQUIRE(sa.beta.minCoeff() < 0.5);
-  REQUIRE(sa.beta.maxCoeff() > 0.5);
-  const double R = sa.Rbar.cwiseAbs().maxCoeff(), u = sa.u.cwiseAbs().maxCoeff();
-  for (int i = 0; i < ma.interface().size(); ++i) {
-    const int j = pair_at.at(position_key(ma.mesh().nodes[ma.interface().pairs[i].node]));
-    CHECK((mb.interface().pairs[j].frame.n - n).norm() <= 1e-14);
-    CHECK(std::abs(sa.beta[i] - sb.beta[j]) <= 1e-8);
-    CHECK(std::abs(sa.Rbar[3 * i + 2] - sb.Rbar[3 * j + 2]) <= 1e-8 * R);
-    CHECK(std::abs(std::hypot(sa.Rbar[3 * i], sa.Rbar[3 * i + 1]) - std::hypot(sb.Rbar[3 * j], sb.Rbar[3 * j + 1])) <= 1e-8 * R);
-    CHECK(std::abs(sa.u[3 * i + 2] - sb.u[3 * j + 2]) <= 1e-8 * u);
-    CHECK(std::abs(std::hypot(sa.u[3 * i], sa.u[3 * i + 1]) - std::hypot(sb.u[3 * j], sb.u[3 * j + 1])) <= 1e-8 * u);
-  }
+  const Config a_cfg = test::corner_peel(4, pull.reference);
+  const Config b_cfg = test::corner_peel(4, pull.turned, "mesh = { file = \"" + turned_plate(4, Q) + "\"; };");
+  require_turned_alike(a_cfg, b_cfg, [&](const Eigen::Vector3d& x) { return Eigen::Vector3d(Q.transpose() * x); }, n);
+}
+
+TEST_CASE("3D placement: mesh.origin and mesh.rotation move the built-in box and a gmsh plate as a turned file does",
+          "[gmsh][solid]") {
+  // The box's origin is its lower corner and the centre of the turn; a file's origin is the
+  // centre only. The node set of the load is found in the unturned frame.
+  const Eigen::Matrix3d& Q = oblique;
+  const Eigen::Vector3d o(2.0, -1.0, 3.0);
+  const CornerPull pull(Q);
+  const bool box = GENERATE(true, false);
+  INFO((box ? "the built-in box" : "a gmsh file"));
+  std::ostringstream placement;
+  placement << std::setprecision(17) << "origin = [" << o.x() << ", " << o.y() << ", " << o.z()
+            << "]; rotation = { axis = [1.0, 2.0, 3.0]; angle = " << 0.7 * 180 / M_PI << "; };";
+  const std::string source = box ? "size = [4.0, 1.0, 4.0]; nx = 4; ny = 1; nz = 4; element = \"H8\";"
+                                 : "file = \"" + turned_plate(4, Eigen::Matrix3d::Identity()) + "\";";
+  const Config a_cfg = test::corner_peel(4, pull.reference, "mesh = { " + source + " };");
+  const Config b_cfg = test::corner_peel(4, pull.turned, "mesh = { " + source + " " + placement.str() + " };");
+  const Model mb = test::make_model(b_cfg);
+  CHECK((mb.mesh().placement.rotation - Q).norm() <= 1e-14);
+  require_turned_alike(a_cfg, b_cfg, [&](const Eigen::Vector3d& x) {
+    const Eigen::Vector3d back = Q.transpose() * (x - o);
+    return Eigen::Vector3d(box ? back : Eigen::Vector3d(back + o));
+  }, pull.n);
 }
 
 TEST_CASE("3D body-body interface: a plate peeled from a held elastic block behaves as on a rigid base", "[gmsh][solid]") {

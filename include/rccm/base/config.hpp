@@ -31,15 +31,16 @@ struct MeshParams {
   int refine = 0;                          // file: uniform refinements (each splits every cell in 4)
   std::map<std::string, double> parameters;  // .geo: values of its DefineConstant[ name = {..., Name "name"} ]
   std::string contents;                    // file: a hash of its text (the fingerprint covers the mesh, not its name)
-  std::array<double, 2> origin{0.0, 0.0};  // mm
+  std::array<double, 3> origin{0.0, 0.0, 0.0};  // mm: the rectangle's or box's lower corner, the centre of `rotation`
   std::array<double, 2> size{};            // mm
   int nx = 0, ny = 0;                      // cells along x and y
-  double depth = 0.0;                      // box: its extent along z from z = 0, mm (size's third number)
+  double depth = 0.0;                      // box: its extent along z from origin's z, mm (size's third number)
   int nz = 0;                              // box: cells along z; 0: a 2D mesh
   ElementType element = ElementType::T3;
   int dimension = 2;                       // 3: the box, or a file with Physical Volumes
   int dim() const { return dimension; }
-  double rotation = 0.0;                   // degrees, counter-clockwise about `origin`
+  double rotation = 0.0;                   // degrees, counter-clockwise about `axis` through `origin`
+  std::array<double, 3> axis{0.0, 0.0, 1.0};  // unit; 2D: z (a turn in the plane)
   std::vector<NodeSetDef> node_sets;       // extra sets beside the edges and corners (or the file's groups)
 };
 

@@ -17,7 +17,8 @@ Mesh make_mesh(const Config& cfg);
 /// box has 6 numbers, to round-off); a box may not take the name of an existing set.
 void add_box_sets(Mesh& mesh, const std::vector<NodeSetDef>& boxes);
 
-/// Turns the mesh by `degrees` counter-clockwise about `origin` and records it as its placement.
-void place(Mesh& mesh, const std::array<double, 2>& origin, double degrees);
+/// Turns the mesh by `p.rotation` degrees counter-clockwise (right-handed) about `p.axis`
+/// through `p.origin` and records it as its placement.
+void place(Mesh& mesh, const MeshParams& p);
 
 }  // namespace rccm
