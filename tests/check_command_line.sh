@@ -3,7 +3,7 @@
 #  1. malformed --set paths and values are bad input (exit 2, the path named), a bare path is a
 #     string, -o DIR writes there, --restart '' is refused;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
-#  3. --force starts from an empty result set and leaves other files alone;
+#  3. --force starts from an empty result set and leaves other files alone, in plots/ too;
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
 #  5. a full disk: exit 3, the message names the file that could not be written and does not
 #     claim a report that is not there;
@@ -53,12 +53,22 @@ grep -q "integrator: rate-independent" "$work/alpha0/report.txt" 2>/dev/null || 
 out=$work/forced
 "$rccm" run "$b1" -q "${short[@]}" -o "$out" >/dev/null 2>&1
 echo "my notes" > "$out/notes.txt"
+MPLBACKEND=Agg "$src/tools/plot" "$out" >/dev/null 2>&1 || fail "tools/plot on $out"
+[ -e "$out/plots/profiles.png" ] || fail "tools/plot wrote no plots/profiles.png"
+echo "my figure" > "$out/plots/mine.txt"
 check; "$rccm" run "$b1" -q --force "${short[@]}" --set 'output.times=[0.3]' -o "$out" >/dev/null 2>"$work/err" \
   || fail "--force: $(cat "$work/err")"
 [ -e "$out/interface_t0.25.csv" ] && fail "--force: the earlier run's interface_t0.25.csv is still there"
 [ -e "$out/interface_t0.3.csv" ] || fail "--force: no interface_t0.3.csv"
 [ "$(ls "$out"/mesh_*.vtu | wc -l)" -eq "$(grep -c '<DataSet' "$out/results.pvd")" ] || fail "--force: .vtu files of the earlier run left"
 [ -e "$out/notes.txt" ] || fail "--force removed a file rccm did not write"
+[ -e "$out/plots/mine.txt" ] || fail "--force removed the user's file in plots/"
+[ -e "$out/plots/profiles.png" ] && fail "--force left the earlier run's plots/profiles.png"
+rm "$out/plots/mine.txt"
+check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force: $(cat "$work/err")"
+MPLBACKEND=Agg "$src/tools/plot" "$out" >/dev/null 2>&1 || fail "tools/plot on $out"
+check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force: $(cat "$work/err")"
+[ -e "$out/plots" ] && fail "--force left plots/ with only tools/plot's files in it: $(ls -A "$out/plots")"
 
 # 4. A closed pipe.
 out=$work/pipe

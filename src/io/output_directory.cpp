@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 
 namespace fs = std::filesystem;
 
@@ -17,7 +18,7 @@ namespace {
 // The files that mark a directory as holding a run's results.
 const char* const result_marks[] = {"history.csv", "report.txt", "results.pvd"};
 
-/// Whether a file name is one rccm writes into an output directory (or tools/plot's plots/).
+/// Whether a file name is one rccm writes into an output directory.
 bool result_file(const std::string& name) {
   const auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
   const auto ends = [&](const char* p) {
@@ -25,10 +26,23 @@ bool result_file(const std::string& name) {
     return name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
   };
   for (const char* f : {"history.csv", "curves.csv", "report.txt", "report.json", "results.pvd", "interface.pvd",
-                        "checkpoint.txt", "plots"})
+                        "checkpoint.txt"})
     if (name == f) return true;
   return (starts("interface_t") && ends(".csv")) || (starts("mesh_") && ends(".vtu")) ||
          (starts("interface_") && ends(".vtp")) || ends(".tmp");
+}
+
+/// Removes the plots tools/plot wrote into `plots` (the names in its manifest), and the
+/// directory if nothing else is left in it: the user's own files there stay.
+void remove_plots(const fs::path& plots) {
+  std::error_code ec;
+  std::ifstream manifest(plots / ".rccm-plots");
+  for (std::string name; std::getline(manifest, name);)
+    if (!name.empty() && name.find('/') == std::string::npos && name != "." && name != "..") fs::remove(plots / name, ec);
+  manifest.close();
+  fs::remove(plots / ".rccm-plots", ec);
+  fs::remove(plots / ".rccm-plots.tmp", ec);
+  if (fs::is_empty(plots, ec)) fs::remove(plots, ec);
 }
 
 /// Whether a file can be created in `dir` (a probe created and removed at once: permissions,
@@ -79,6 +93,7 @@ OutputDirectory::OutputDirectory(const Config& cfg, bool fresh) : path_(cfg.outp
   if (!fresh) return;
   for (const auto& entry : fs::directory_iterator(path_, ec))
     if (result_file(entry.path().filename().string())) fs::remove_all(entry.path(), ec);
+  if (fs::is_directory(fs::path(path_) / "plots", ec)) remove_plots(fs::path(path_) / "plots");
 }
 
 OutputDirectory::~OutputDirectory() {
