@@ -1,6 +1,7 @@
 #include "rccm/fem/gmsh_mesh.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/memory.hpp"
 #include "rccm/base/suggest.hpp"
 
 #include <Eigen/Geometry>
@@ -11,6 +12,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <map>
 #include <mutex>
 #include <set>
@@ -86,6 +88,7 @@ class Reader {
 
   Mesh read() {
     open();
+    require_fits(double(node_count()), "the mesh");
     for (int k = 0; k < p_.refine; ++k) gmsh::model::mesh::refine();
     m_.source = p_.file;
     read_bodies();
@@ -108,12 +111,80 @@ class Reader {
       m_.dim = top_dimension();
       std::vector<int> types;
       gmsh::model::mesh::getElementTypes(types, m_.dim);
-      if (types.empty()) gmsh::model::mesh::generate(m_.dim);
+      if (types.empty()) {
+        // Sizes checked and the curves meshed first: gmsh throws a bad size from its threads
+        // (where it cannot be caught), and a tiny one would fill the memory for minutes.
+        check_sizes();
+        gmsh::model::mesh::generate(1);
+        require_fits(nodes_from_curves(), "meshing it");
+        gmsh::model::mesh::generate(m_.dim);
+      }
     } catch (const std::string& e) {
       fail(GmshSession::last_error(e));
+    } catch (const InputError&) {
+      throw;  // ours, already placed
     } catch (const std::exception& e) {
       fail(GmshSession::last_error(e.what()));
     }
+  }
+
+  /// gmsh's global mesh sizes, as the file set them (a parameter of 0 or below there).
+  void check_sizes() const {
+    for (const char* name : {"Mesh.MeshSizeMax", "Mesh.MeshSizeFactor", "Mesh.MeshSizeMin"}) {
+      double v = 0;
+      gmsh::option::getNumber(name, v);
+      const bool at_least_zero = std::string(name) == "Mesh.MeshSizeMin";
+      if (!std::isfinite(v) || v < 0 || (v == 0 && !at_least_zero)) {
+        std::ostringstream m;
+        m << name << " = " << v << ": a mesh size must be " << (at_least_zero ? ">= 0" : "> 0")
+          << " (check the value of the file's parameters)";
+        fail(m.str());
+      }
+    }
+  }
+
+  /// Nodes of the mesh to come, from its meshed curves: the model's bounding box filled with
+  /// cells as long as the curves' median cell (a box over-estimates; so does a fine curve).
+  double nodes_from_curves() const {
+    std::vector<double> lengths;
+    std::vector<int> types;
+    std::vector<std::vector<std::size_t>> cells, nodes;
+    gmsh::model::mesh::getElements(types, cells, nodes, 1, -1);
+    for (std::size_t t = 0; t < types.size(); ++t) {
+      if (types[t] != 1) continue;  // 2-node lines
+      for (std::size_t c = 0; c < cells[t].size(); ++c) {
+        std::vector<double> a, b, param;
+        gmsh::model::mesh::getNode(nodes[t][2 * c], a, param);
+        gmsh::model::mesh::getNode(nodes[t][2 * c + 1], b, param);
+        lengths.push_back(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
+      }
+    }
+    if (lengths.empty()) return 0;
+    std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
+    const double h = std::max(lengths[lengths.size() / 2], 1e-300);
+    double x0, y0, z0, x1, y1, z1;
+    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+    const double extent[3] = {std::max(x1 - x0, h), std::max(y1 - y0, h), std::max(z1 - z0, h)};
+    // Nodes per unit measure of a mesh of size h: about 1.15 / h^2 (triangles), 1.4 / h^3 (tetrahedra).
+    return m_.dim == 2 ? 1.15 * extent[0] * extent[1] / (h * h) : 1.4 * extent[0] * extent[1] * extent[2] / (h * h * h);
+  }
+
+  double node_count() const {
+    std::vector<std::size_t> tags;
+    std::vector<double> x, param;
+    gmsh::model::mesh::getNodes(tags, x, param, -1, -1, false, false);
+    return double(tags.size());
+  }
+
+  /// Refuses `what` (`nodes` before refinement) when the body's assembly would not fit in
+  /// the memory: each of mesh.refine's splits multiplies the nodes by 4 (2D) or 8 (3D).
+  void require_fits(double nodes, const std::string& what) const {
+    const double unknowns = m_.dim * nodes * std::pow(m_.dim == 2 ? 4.0 : 8.0, p_.refine);
+    std::ostringstream m;
+    m << what << (p_.refine ? " with mesh.refine = " + std::to_string(p_.refine) : std::string()) << " (about "
+      << std::setprecision(3) << unknowns << " unknowns)";
+    const std::string shortfall = memory_shortfall(assembly_bytes(unknowns), m.str());
+    if (!shortfall.empty()) fail(shortfall + "; use coarser mesh sizes (the file's parameters) or fewer refinements");
   }
 
   /// Every parameter is a DefineConstant of the .geo (a misspelt one would be ignored).

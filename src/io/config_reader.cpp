@@ -426,7 +426,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
     if (!std::ifstream(p.file)) r.fail(m["file"], "cannot read " + p.file + " (a mesh file is found relative to the config)");
     p.contents = file_hash(p.file);
     p.refine = r.integer(m, "refine", 0);
-    if (m.exists("refine")) r.check(p.refine >= 0 && p.refine <= 6, m["refine"], "must be in [0, 6] (each level has 4 times the cells)", p.refine);
+    if (m.exists("refine")) r.check(p.refine >= 0 && p.refine <= 6, m["refine"], "must be in [0, 6] (each level has 4 times the cells, 8 times in 3D)", p.refine);
     if (m.exists("parameters")) {
       const Setting& g = r.group(m, "parameters");
       for (int i = 0; i < g.getLength(); ++i) p.parameters[g[i].getName()] = r.number(g[i]);
@@ -466,10 +466,9 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
     r.check(std::abs(p.origin[k]) + extent[k] < 1e15, m.exists("size") ? m["size"] : m, "the mesh must lie within 1e15 mm of 0",
             extent[k]);
   if (p.file.empty()) {
-    // The assembly's triplets, the matrix and its Cholesky factor (~2.6 kB per unknown at a
-    // million unknowns, measured): refused up front rather than failing after minutes.
+    // Refused up front rather than failing after minutes.
     const double nodes = (p.nx + 1.0) * (p.ny + 1.0) * (p.nz + 1.0), dofs = p.dim() * nodes;
-    const double bytes = dofs * (600 + 100 * std::log2(std::max(dofs, 2.0)));
+    const double bytes = assembly_bytes(dofs);
     if (bytes > available_memory())
       r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + (p.nz ? " x " + std::to_string(p.nz) : "") + " mesh (" + short_number(dofs) +
                           " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
