@@ -62,11 +62,18 @@ std::string physical(int dim) {
   return "Physical " + k;
 }
 
-/// 3 when the open model has a Physical Volume (a solid), 2 otherwise.
+const char* const no_physical_volume =
+    "the file has volumes but no Physical Volume: name each body, e.g. Physical Volume(\"plate\") = {1}; "
+    "(a 2D mesh lies in the plane z = 0, its bodies Physical Surfaces)";
+
+/// 3 when the open model has a Physical Volume (a solid), 2 when it has no volume at all, 0
+/// when it has volumes but none is a Physical Volume (no_physical_volume).
 int top_dimension() {
-  gmsh::vectorpair volumes;
-  gmsh::model::getPhysicalGroups(volumes, 3);
-  return volumes.empty() ? 2 : 3;
+  gmsh::vectorpair groups, volumes;
+  gmsh::model::getPhysicalGroups(groups, 3);
+  if (!groups.empty()) return 3;
+  gmsh::model::getEntities(volumes, 3);
+  return volumes.empty() ? 2 : 0;
 }
 
 /// Opens `p.file` with the .geo's parameters set (throws gmsh's errors).
@@ -109,6 +116,7 @@ class Reader {
       if (!p_.parameters.empty()) check_parameters();
       open_with_parameters(p_);
       m_.dim = top_dimension();
+      if (m_.dim == 0) fail(no_physical_volume);
       std::vector<int> types;
       gmsh::model::mesh::getElementTypes(types, m_.dim);
       if (types.empty()) {
@@ -379,9 +387,13 @@ int read_gmsh_dimension(const MeshParams& p) {
   GmshSession session;
   try {
     open_with_parameters(p);
-    return top_dimension();
+    const int dim = top_dimension();
+    if (dim == 0) throw InputError(p.file + ": " + no_physical_volume);
+    return dim;
   } catch (const std::string& e) {
     throw InputError(p.file + ": " + GmshSession::last_error(e));
+  } catch (const InputError&) {
+    throw;
   } catch (const std::exception& e) {
     throw InputError(p.file + ": " + GmshSession::last_error(e.what()));
   }
