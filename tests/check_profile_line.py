@@ -1,0 +1,75 @@
+#!/usr/bin/python3
+"""tools/plot's 3D profile line (profile_line) on meshes made here, whose line is known:
+  1. a 5 x 5 grid of spacing 2 mm in the plane y = 0, opened most at its corner (0, 0, 0):
+     the line is the diagonal, its nodes (i, i) at distances 2 sqrt(2) i;
+  2. the same grid turned about an oblique axis and moved: the same nodes, the same distances
+     (1e-12), whatever the frame;
+  3. a disc of radius 10 on a polar grid, opened most at the rim point (10, 0, 0): the nodes
+     within half a spacing of the diameter through it, the centre among them, at distances
+     |x - 10| from it.
+Skipped (77) without numpy and matplotlib.
+Usage: check_profile_line.py TOOLS_PLOT"""
+import importlib.machinery
+import importlib.util
+import math
+import sys
+
+try:
+    import numpy as np
+    import matplotlib  # noqa: F401
+except ImportError:
+    print("skipped: numpy or matplotlib is not installed")
+    sys.exit(77)
+
+loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
+spec = importlib.util.spec_from_loader("rccm_plot", loader)
+plot = importlib.util.module_from_spec(spec)
+loader.exec_module(plot)
+failed = 0
+
+
+def check(ok, what):
+    global failed
+    if not ok:
+        failed += 1
+        print("FAIL " + what)
+
+
+def columns(X, u_n, a):
+    return {"x [mm]": X[:, 0], "y [mm]": X[:, 1], "z [mm]": X[:, 2], "u_n [mm]": u_n, "a [mm2]": a}
+
+
+# 1. The grid, opened most at its corner: u_n falls with the distance from it.
+i, k = np.meshgrid(np.arange(5), np.arange(5), indexing="ij")
+X = np.column_stack([2.0 * i.ravel(), np.zeros(25), 2.0 * k.ravel()])
+u_n = 1.0 / (1.0 + np.linalg.norm(X, axis=1))
+a = np.full(25, 4.0)
+rows, s = plot.profile_line(columns(X, u_n, a))
+diagonal = [n for n in range(25) if i.ravel()[n] == k.ravel()[n]]
+check(sorted(rows.tolist()) == diagonal, f"grid: rows {sorted(rows.tolist())}, want the diagonal {diagonal}")
+check(np.allclose(s, 2 * math.sqrt(2) * i.ravel()[rows], atol=1e-12), f"grid: distances {s}")
+
+# 2. Turned about (1, 2, 3) by 0.7 rad and moved: the same rows and distances.
+axis = np.array([1.0, 2.0, 3.0]) / math.sqrt(14.0)
+K = np.array([[0, -axis[2], axis[1]], [axis[2], 0, -axis[0]], [-axis[1], axis[0], 0]])
+Q = np.eye(3) + math.sin(0.7) * K + (1 - math.cos(0.7)) * K @ K
+turned = X @ Q.T + np.array([5.0, -3.0, 7.0])
+rows_t, s_t = plot.profile_line(columns(turned, u_n, a))
+check(rows_t.tolist() == rows.tolist(), f"turned grid: rows {rows_t.tolist()}, want {rows.tolist()}")
+check(np.allclose(s_t, s, atol=1e-12), f"turned grid: distances {s_t}, want {s}")
+
+# 3. A disc: rings of radius 10 j / 5 with 8 j nodes, opened most at (10, 0, 0).
+points = [(0.0, 0.0)]
+for j in range(1, 6):
+    points += [(2.0 * j * math.cos(2 * math.pi * m / (8 * j)), 2.0 * j * math.sin(2 * math.pi * m / (8 * j))) for m in range(8 * j)]
+D = np.array([(x, 0.0, z) for x, z in points])
+u_n = 1.0 / (1.0 + np.linalg.norm(D - np.array([10.0, 0.0, 0.0]), axis=1))
+area = np.full(len(D), math.pi * 100 / len(D))
+rows, s = plot.profile_line(columns(D, u_n, area))
+spacing = math.sqrt(math.pi * 100 / len(D))
+check(0 in rows.tolist(), "disc: the centre is not on the line")
+check(len(rows) >= 9, f"disc: {len(rows)} nodes on the line")
+check(np.all(np.abs(D[rows, 2]) <= 0.5 * spacing + 1e-12), "disc: a node farther than half a spacing from the diameter")
+check(np.allclose(s, 10.0 - D[rows, 0], atol=1e-12), "disc: distances are not 10 - x")
+print(f"{'FAILED' if failed else 'passed'}: {failed} failure(s)")
+sys.exit(1 if failed else 0)
