@@ -234,7 +234,7 @@ void copy_value(const Setting& src, Setting& parent, const std::string& name) {
 /// libconfig's parse message, with the fix for its most common cause.
 std::string syntax_hint(const std::string& error) {
   if (error.find("mismatched element type") != std::string::npos)
-    return error + ": an array holds one type, write 1.0 (not 1) beside other decimals";
+    return error + ": an array holds values of one type: numbers only, without quotes, and 1.0 (not 1) beside other decimals";
   return error;
 }
 
@@ -418,6 +418,11 @@ void read_rotation(const Reader& r, const Setting& m, MeshParams& p) {
 MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& config_dir) {
   const Setting& m = r.group(root, "mesh");
   MeshParams p;
+  // The settings of the other kind of mesh source, named as such rather than as unknown.
+  for (const char* key : {"size", "nx", "ny", "nz", "element"})
+    if (m.exists("file") && m.exists(key)) r.fail(m[key], "sets the built-in mesh: a mesh file (mesh.file) brings its own cells; leave it out");
+  for (const char* key : {"refine", "parameters"})
+    if (!m.exists("file") && m.exists(key)) r.fail(m[key], "applies to a gmsh file (mesh.file), not to the built-in mesh");
   if (m.exists("file")) {  // a gmsh file
     r.only(m, {"file", "refine", "parameters", "node_sets", "rotation", "origin"});
     const std::string file = r.text(m, "file", "", true);

@@ -2,6 +2,7 @@
 
 #include "rccm/base/errors.hpp"
 
+#include <iomanip>
 #include <sstream>
 
 namespace rccm {
@@ -43,8 +44,9 @@ ContactSolution solve_contact(const Model& model, ContactSolver& solver, double 
   const double umax = s.u.cwiseAbs().maxCoeff(&worst);
   if (!s.u.allFinite() || !s.Rbar.allFinite() || umax > model.size()) {
     std::ostringstream m;
-    m << "t = " << t << " s: the interface displacement at " << model.locate(pb.layout.pairs(worst)) << " is " << umax
-      << " mm, more than the body's size (" << model.size() << " mm): nothing holds the body there (" << debonded
+    m << "t = " << t << " s: the interface displacement at " << model.locate(pb.layout.pairs(worst)) << " is "
+      << std::setprecision(10) << umax << " mm, more than the body's size (" << model.size() << " mm)"
+      << std::setprecision(6) << ": nothing holds the body there (" << debonded
       << " of " << beta.size() << " contact nodes have beta = 0); restrain it with a prescribed displacement, keep "
          "beta0 > 0, or reduce the load";
     throw SolveError(m.str());

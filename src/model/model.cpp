@@ -24,7 +24,8 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
                          const std::string& list, const std::vector<int>& candidates, double reach, const char* what) {
   std::vector<int> out;
   for (std::size_t k = 0; k < points.size(); ++k) {
-    const Eigen::Vector3d p = mesh.placement(Eigen::Vector3d(points[k].point[0], points[k].point[1], points[k].point[2]));
+    const Eigen::Vector3d given(points[k].point[0], points[k].point[1], points[k].point[2]);  // in the unturned frame
+    const Eigen::Vector3d p = mesh.placement(given);
     const auto distance = [&](std::size_t j) { return (mesh.nodes[candidates[j]] - p).norm(); };
     std::size_t best = 0;
     for (std::size_t j = 1; j < candidates.size(); ++j)
@@ -32,7 +33,8 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
     if (distance(best) > reach) {
       std::ostringstream m;
       m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
-        << point(p, mesh.dim) << " is " << distance(best) << " mm from the nearest " << what;
+        << point(given, mesh.dim) << (p == given ? "" : " (" + point(p, mesh.dim) + " once the mesh is placed)") << " is "
+        << distance(best) << " mm from the nearest " << what;
       throw InputError(m.str());
     }
     out.push_back(static_cast<int>(best));
