@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The command line as a hostile or hurried user meets it (issue 15):
 #  1. malformed --set paths and values are bad input (exit 2, the path named), a bare path is a
-#     string, -o DIR writes there, --restart '' is refused;
+#     string, -o DIR writes there, --restart '' is refused; a doubtful interface warns;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too;
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
@@ -43,6 +43,11 @@ check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/dash-o" >/dev/null 2>"$work/
 [ -s "$work/dash-o/report.txt" ] || fail "-o DIR: no report there"
 
 check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rccm --version: $("$rccm" --version)"
+
+# A doubtful interface is run, and said: on stderr and in the report.
+check; "$rccm" run "$b1" -q "${short[@]}" --set interface.g0=0.5 -o "$work/gap" >/dev/null 2>"$work/err" || fail "g0 = 0.5: $(cat "$work/err")"
+grep -q "rccm: warning: .*start bonded across a gap" "$work/err" || fail "g0 = 0.5 bonded: no warning on stderr ($(cat "$work/err"))"
+grep -q "^warning: .*start bonded across a gap" "$work/gap/report.txt" || fail "g0 = 0.5 bonded: no warning in report.txt"
 
 # 2. alpha = 0.
 check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \

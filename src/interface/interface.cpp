@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iomanip>
 #include <limits>
 #include <sstream>
 
@@ -13,6 +14,10 @@ namespace rccm {
 namespace {
 
 RccmLaw law_of(const InterfaceParams& p) { return {p.Cn, p.Ct, p.w, p.alpha, p.mu}; }
+
+/// A flat foundation's normal this far from a face's inward normal is noted (Interface::notes):
+/// a face bonded to a plane lies on it, to the mesh's facets' round-off.
+constexpr double max_tilt_degrees = 5.0;
 
 /// The contact pairs of one config interface, built node by node of its boundary set.
 class PairBuilder {
@@ -40,8 +45,13 @@ class PairBuilder {
       face(c, k);
       pairs.push_back(c);
     }
+    note_tilt();
+    note_bonded_gap(pairs);
     return pairs;
   }
+
+  /// What the pairs' geometry makes doubtful without being wrong (Interface::notes).
+  const std::vector<std::string>& notes() const { return notes_; }
 
  private:
   [[noreturn]] void fail(const std::string& setting, const std::string& what) const {
@@ -126,6 +136,47 @@ class PairBuilder {
     }
   }
 
+  /// A flat foundation tilted against the face it holds: its normal more than
+  /// max_tilt_degrees from the boundary's inward normal somewhere (a mesh turned without
+  /// its normal, say).
+  void note_tilt() {
+    if (p_.facing != Facing::Line) return;
+    const Eigen::Vector3d n = Eigen::Vector3d(p_.normal[0], p_.normal[1], p_.normal[2]).normalized();
+    double worst = 0;
+    std::size_t at = 0;
+    for (std::size_t k = 0; k < nodes_.size(); ++k) {
+      const double degrees = std::acos(std::clamp(-n.dot(outward_[k]), -1.0, 1.0)) * 180 / M_PI;
+      if (degrees > worst) worst = degrees, at = k;
+    }
+    if (worst <= max_tilt_degrees) return;
+    std::ostringstream m;
+    m << cfg_.where(p_.path + ".normal") << ": " << point(n, mesh_.dim) << " is " << std::setprecision(3) << worst
+      << " degrees from the boundary's inward normal at mesh node " << nodes_[at] << " " << point(mesh_.nodes[nodes_[at]], mesh_.dim)
+      << ": the foundation is not parallel to the face there (a turned mesh turns its foundation's normal only "
+         "when the config does)";
+    notes_.push_back(m.str());
+  }
+
+  /// Adhesion across an initial gap: a pair bonded (beta0 > 0) with g0 > 0 has its springs act
+  /// across the gap (docs/MODEL.md s2: a bonded interface has g0 = 0).
+  void note_bonded_gap(const std::vector<ContactPair>& pairs) {
+    if (p_.facing == Facing::Body) return;  // matched nodes: a gap within the matching tolerance
+    const double tolerance = p_.facing == Facing::Circle ? 1e-6 * p_.radius : 0.0;
+    std::size_t count = 0, at = 0;
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+      if (pairs[k].beta0 > 0 && pairs[k].g0 > tolerance) {
+        if (count == 0 || pairs[k].g0 > pairs[at].g0) at = k;
+        ++count;
+      }
+    if (count == 0) return;
+    std::ostringstream m;
+    m << cfg_.where(p_.path) << ": " << count << " contact node(s) start bonded across a gap, up to g0 = " << pairs[at].g0
+      << " mm at mesh node " << pairs[at].node << " " << point(mesh_.nodes[pairs[at].node], mesh_.dim) << " (beta0 = " << pairs[at].beta0
+      << "): their adhesive springs act across it; a bonded interface touches its foundation (g0 = 0), an open one "
+         "starts with beta0 = 0 (precrack)";
+    notes_.push_back(m.str());
+  }
+
   /// A foundation's normal points into the body: against the boundary's outward normal
   /// (within 60 degrees), not out of the body nor along the interface.
   void require_facing(const Eigen::Vector3d& n, std::size_t k, const char* setting, const char* what) const {
@@ -194,6 +245,7 @@ class PairBuilder {
   const int law_;
   std::vector<int> nodes_, opposite_;
   std::vector<Eigen::Vector3d> outward_, outward_opposite_;
+  std::vector<std::string> notes_;
 };
 
 /// A 3D interface's pairs in recursive bisection order of their nodes (la/bisection_order.hpp:
@@ -215,7 +267,8 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
   std::vector<int> owner(mesh.num_nodes(), -1);  // the interface of each contact node
   for (const InterfaceParams& p : cfg.interfaces) {
     const int law = static_cast<int>(I.laws.size());
-    for (const ContactPair& c : in_space_order(PairBuilder(mesh, cfg, p, law).build(), mesh)) {
+    PairBuilder builder(mesh, cfg, p, law);
+    for (const ContactPair& c : in_space_order(builder.build(), mesh)) {
       for (int node : {c.node, c.opposite})
         if (node >= 0 && owner[node] >= 0)
           throw InputError(cfg.where(p.path + ".boundary") + ": node " + point(mesh.nodes[node], mesh.dim) + " is on " +
@@ -226,6 +279,7 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
       I.pairs.push_back(c);
     }
     I.laws.push_back(law_of(p));
+    I.notes.insert(I.notes.end(), builder.notes().begin(), builder.notes().end());
   }
   const int dim = I.layout.dim;
   std::vector<Eigen::Triplet<double>> trip;

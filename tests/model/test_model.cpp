@@ -6,6 +6,8 @@
 #include "rccm/fem/elasticity.hpp"
 #include "rccm/model/interface_state.hpp"
 #include "rccm/fem/loads.hpp"
+#include "rccm/fem/mesh_source.hpp"
+#include "rccm/interface/interface.hpp"
 #include "rccm/model/model.hpp"
 
 #include <Eigen/Dense>
@@ -185,6 +187,29 @@ time = { T = 1.0; };
   CHECK_THROWS_WITH(test::make_model(cfg), Catch::Contains("chain of boundary edges"));
   const Config free_cfg = test::config_from_text(text, {"interface.boundary=\"bottom\"", "interface.Cn=1e-30", "interface.Ct=1e-30"});
   CHECK_THROWS_WITH(test::make_model(free_cfg), Catch::Contains("not restrained"));
+}
+
+TEST_CASE("the interface notes a flat foundation tilted against its face, and pairs bonded across a gap", "[model]") {
+  const std::string loads = R"({ node_set = "top"; type = "force"; component = "y"; value = 0.1; })";
+  const auto notes = [&](const std::string& extra, std::vector<std::string> overrides = {}) {
+    const Config cfg = test::config_from_text(block_config("Q4", "mu = 0.3; " + extra, loads), overrides);
+    return make_interface(make_mesh(cfg), cfg).notes;
+  };
+  CHECK(notes("").empty());
+  // The normal (0.3, 1) is 16.7 degrees off the face's (0, 1); (0.05, 1) 2.9, within 5.
+  const std::vector<std::string> tilted = notes("normal = [0.3, 1.0];");
+  REQUIRE(tilted.size() == 1);
+  CHECK_THAT(tilted[0], Catch::Contains("interface.normal: (0.287348, 0.957826) is 16.7 degrees from the boundary's inward normal"));
+  CHECK(notes("normal = [0.05, 1.0];").empty());
+  // The mesh turned by 30 degrees: its normal must turn alike.
+  CHECK(notes("", {"mesh.rotation=30"}).size() == 1);
+  CHECK(notes("normal = [-0.5, 0.8660254037844386];", {"mesh.rotation=30"}).empty());
+  // g0 > 0: noted for the bonded pairs only (a precracked or beta0 = 0 interface is open).
+  const std::vector<std::string> gap = notes("g0 = 0.5;");
+  REQUIRE(gap.size() == 1);
+  CHECK_THAT(gap[0], Catch::Contains("9 contact node(s) start bonded across a gap, up to g0 = 0.5 mm"));
+  CHECK(notes("g0 = 0.5; beta0 = 0.0;").empty());
+  CHECK(notes("g0 = 0.0;").empty());
 }
 
 TEST_CASE("the compressed exact step gives the dense one's contact solution (B1, damaged, sliding)", "[model][compressed]") {

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include <string>
 #include <vector>
 
 namespace rccm {
@@ -33,6 +34,8 @@ struct Interface {
   std::vector<ContactPair> pairs;
   std::vector<RccmLaw> laws;  // one per config interface
   SparseMatrix P;             // rows layout.offset(i) + k: axis k of pair i applied to u_node - u_opposite
+  std::vector<std::string> notes;  // doubtful geometry, reported as the run's warnings: a flat foundation
+                                   // tilted against its face, pairs bonded across a gap
 
   int size() const { return static_cast<int>(pairs.size()); }
   const RccmLaw& law(int i) const { return laws[pairs[i].law]; }
