@@ -6,7 +6,8 @@
      (1e-12), whatever the frame;
   3. a disc of radius 10 on a polar grid, opened most at the rim point (10, 0, 0): the nodes
      within half a spacing of the diameter through it, the centre among them, at distances
-     |x - 10| from it.
+     |x - 10| from it;
+  4. a strip 20 x 2 cells opened at a corner: its whole first row, along its length.
 Skipped (77) without numpy and matplotlib.
 Usage: check_profile_line.py TOOLS_PLOT"""
 import importlib.machinery
@@ -71,5 +72,15 @@ check(0 in rows.tolist(), "disc: the centre is not on the line")
 check(len(rows) >= 9, f"disc: {len(rows)} nodes on the line")
 check(np.all(np.abs(D[rows, 2]) <= 0.5 * spacing + 1e-12), "disc: a node farther than half a spacing from the diameter")
 check(np.allclose(s, 10.0 - D[rows, 0], atol=1e-12), "disc: distances are not 10 - x")
+# 4. A strip of 20 x 2 cells of 1 mm, opened most at (0, 0, 0): its line runs along x, the
+#    row z = 0 whole (a line to the centroid (10, 0, 1) would leave the row midway).
+i, k = np.meshgrid(np.arange(21), np.arange(3), indexing="ij")
+S = np.column_stack([1.0 * i.ravel(), np.zeros(i.size), 1.0 * k.ravel()])
+u_n = 1.0 / (1.0 + np.linalg.norm(S, axis=1))
+a = np.where((i.ravel() % 20 == 0), 0.5, 1.0) * np.where(k.ravel() % 2 == 0, 0.5, 1.0)
+rows, s = plot.profile_line(columns(S, u_n, a))
+row = [n for n in range(i.size) if k.ravel()[n] == 0]
+check(sorted(rows.tolist()) == row, f"strip: rows {sorted(rows.tolist())}, want the row z = 0 {row}")
+check(np.allclose(s, S[rows, 0], atol=1e-12), "strip: distances are not x")
 print(f"{'FAILED' if failed else 'passed'}: {failed} failure(s)")
 sys.exit(1 if failed else 0)

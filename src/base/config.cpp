@@ -42,11 +42,13 @@ std::string Config::fingerprint() const {
   Hash h;
   h("mesh.file", mesh.contents)("mesh.refine", mesh.refine);
   for (const auto& [name, value] : mesh.parameters) h(("mesh.parameters." + name).c_str(), value);
-  // A 2D mesh hashes [x, y] of its origin and no axis, as before 3D placement existed: its
-  // checkpoints stay valid.
+  // The origin's z and the turn's axis counted where they are not the defaults: the
+  // checkpoints of meshes without them (every 2D one) stay valid.
   const std::array<double, 2> origin_xy{mesh.origin[0], mesh.origin[1]};
-  if (mesh.dim() == 3) h.list("mesh.origin", mesh.origin).list("mesh.axis", mesh.axis);
-  else h.list("mesh.origin", origin_xy);
+  if (mesh.origin[2] != 0.0 || mesh.axis != std::array<double, 3>{0.0, 0.0, 1.0})
+    h.list("mesh.origin", mesh.origin).list("mesh.axis", mesh.axis);
+  else
+    h.list("mesh.origin", origin_xy);
   h.list("mesh.size", mesh.size)("mesh.nx", mesh.nx)("mesh.ny", mesh.ny);
   h("mesh.depth", mesh.depth)("mesh.nz", mesh.nz)("mesh.element", double(mesh.element))("mesh.rotation", mesh.rotation);
   for (const NodeSetDef& d : mesh.node_sets) h("mesh.node_sets.name", d.name).list("mesh.node_sets.box", d.box);

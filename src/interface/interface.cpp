@@ -45,7 +45,7 @@ class PairBuilder {
       face(c, k);
       pairs.push_back(c);
     }
-    note_tilt();
+    note_tilt(pairs);
     note_bonded_gap(pairs);
     return pairs;
   }
@@ -136,15 +136,16 @@ class PairBuilder {
     }
   }
 
-  /// A flat foundation tilted against the face it holds: its normal more than
-  /// max_tilt_degrees from the boundary's inward normal somewhere (a mesh turned without
-  /// its normal, say).
-  void note_tilt() {
+  /// A flat foundation tilted against the face it holds bonded: its normal more than
+  /// max_tilt_degrees from the boundary's inward normal at a pair with beta0 > 0 (a mesh
+  /// turned without its normal, say; a curved body in unbonded contact is no concern).
+  void note_tilt(const std::vector<ContactPair>& pairs) {
     if (p_.facing != Facing::Line) return;
     const Eigen::Vector3d n = Eigen::Vector3d(p_.normal[0], p_.normal[1], p_.normal[2]).normalized();
     double worst = 0;
     std::size_t at = 0;
     for (std::size_t k = 0; k < nodes_.size(); ++k) {
+      if (pairs[k].beta0 <= 0) continue;
       const double degrees = std::acos(std::clamp(-n.dot(outward_[k]), -1.0, 1.0)) * 180 / M_PI;
       if (degrees > worst) worst = degrees, at = k;
     }

@@ -162,14 +162,6 @@ class Reader {
     return v;
   }
 
-  template <std::size_t N>
-  std::array<double, N> fixed(const Setting& g, const char* name) const {
-    const std::vector<double> v = array(g, name, {N}, "an array of " + std::to_string(N) + " numbers");
-    std::array<double, N> out{};
-    std::copy(v.begin(), v.end(), out.begin());
-    return out;
-  }
-
   /// A point or a direction of the mesh's dimension: `dim` numbers (z = 0 in 2D).
   std::array<double, 3> coordinates(const Setting& g, const char* name, int dim) const {
     const std::string n = std::to_string(dim);
@@ -473,11 +465,10 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
   if (p.file.empty()) {
     // Refused up front rather than failing after minutes.
     const double nodes = (p.nx + 1.0) * (p.ny + 1.0) * (p.nz + 1.0), dofs = p.dim() * nodes;
-    const double bytes = assembly_bytes(dofs);
-    if (bytes > available_memory())
-      r.fail(m["nx"], "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) + (p.nz ? " x " + std::to_string(p.nz) : "") + " mesh (" + short_number(dofs) +
-                          " unknowns) needs about " + short_number(bytes / 1e9) + " GB, the machine has " +
-                          short_number(available_memory() / 1e9) + " GB available; use fewer cells");
+    const std::string shortfall =
+        memory_shortfall(assembly_bytes(dofs), "a " + std::to_string(p.nx) + " x " + std::to_string(p.ny) +
+                                                   (p.nz ? " x " + std::to_string(p.nz) : "") + " mesh (" + short_number(dofs) + " unknowns)");
+    if (!shortfall.empty()) r.fail(m["nx"], shortfall + "; use fewer cells");
   }
   read_rotation(r, m, p);
   p.node_sets = read_box_sets(r, m, p.file.empty(), p.dimension);

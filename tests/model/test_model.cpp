@@ -210,6 +210,12 @@ TEST_CASE("the interface notes a flat foundation tilted against its face, and pa
   CHECK_THAT(gap[0], Catch::Contains("9 contact node(s) start bonded across a gap, up to g0 = 0.5 mm"));
   CHECK(notes("g0 = 0.5; beta0 = 0.0;").empty());
   CHECK(notes("g0 = 0.0;").empty());
+  // One gap per node: the largest named, where it is (node 6 of the bottom row, x = 7.5).
+  const std::vector<std::string> one = notes("g0 = [0.0, 0.1, 0.0, 0.0, 0.0, 0.0, 0.9, 0.2, 0.0];");
+  REQUIRE(one.size() == 1);
+  CHECK_THAT(one[0], Catch::Contains("3 contact node(s) start bonded across a gap, up to g0 = 0.9 mm at mesh node 6 (7.5, 0)"));
+  // A tilted face in unbonded contact (beta0 = 0) is contact of a curved or turned body: no note.
+  CHECK(notes("normal = [0.3, 1.0]; beta0 = 0.0;").empty());
 }
 
 TEST_CASE("the compressed exact step gives the dense one's contact solution (B1, damaged, sliding)", "[model][compressed]") {

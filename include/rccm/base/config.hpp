@@ -28,7 +28,7 @@ enum class Hypothesis { PlaneStrain, PlaneStress, Axisymmetric };
 /// structured rectangle, or the built-in box of H8 cells (`nz` > 0: 3D).
 struct MeshParams {
   std::string file;                        // a .msh (MSH 2.2 or 4.1) or .geo file, relative to the config; empty: the rectangle
-  int refine = 0;                          // file: uniform refinements (each splits every cell in 4)
+  int refine = 0;                          // file: uniform refinements (each splits every cell in 4, in 8 in 3D)
   std::map<std::string, double> parameters;  // .geo: values of its DefineConstant[ name = {..., Name "name"} ]
   std::string contents;                    // file: a hash of its text (the fingerprint covers the mesh, not its name)
   std::array<double, 3> origin{0.0, 0.0, 0.0};  // mm: the rectangle's or box's lower corner, the centre of `rotation`
