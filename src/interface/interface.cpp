@@ -100,11 +100,14 @@ class PairBuilder {
     return v.size() == 1 ? v[0] : v[k];
   }
 
+  /// A flat foundation's unit normal (interface.normal).
+  Eigen::Vector3d flat_normal() const { return Eigen::Vector3d(p_.normal[0], p_.normal[1], p_.normal[2]).normalized(); }
+
   /// The frame and gap of node k against what it faces.
   void face(ContactPair& c, std::size_t k) const {
     const Eigen::Vector3d& x = mesh_.nodes[c.node];
     if (p_.facing == Facing::Line) {
-      const FlatFoundation line{Eigen::Vector3d(p_.normal[0], p_.normal[1], p_.normal[2]).normalized()};
+      const FlatFoundation line{flat_normal()};
       c.frame = line.frame_at(x);
       c.g0 = per_node("g0", p_.g0, k);
       require_facing(c.frame.n, k, ".normal", "the foundation normal");
@@ -141,7 +144,7 @@ class PairBuilder {
   /// turned without its normal, say; a curved body in unbonded contact is no concern).
   void note_tilt(const std::vector<ContactPair>& pairs) {
     if (p_.facing != Facing::Line) return;
-    const Eigen::Vector3d n = Eigen::Vector3d(p_.normal[0], p_.normal[1], p_.normal[2]).normalized();
+    const Eigen::Vector3d n = flat_normal();
     double worst = 0;
     std::size_t at = 0;
     for (std::size_t k = 0; k < nodes_.size(); ++k) {

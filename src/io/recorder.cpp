@@ -194,8 +194,7 @@ RunResult Recorder::close(const std::string& stopped) {
   result_.solves = ode_->totals();
   result_.energy = energy_->terms();
   result_.warnings = model_->interface().notes;
-  const std::vector<std::string> integrator_warnings = integrator_->warnings();
-  result_.warnings.insert(result_.warnings.end(), integrator_warnings.begin(), integrator_warnings.end());
+  for (const std::string& w : integrator_->warnings()) result_.warnings.push_back(w);
   result_.warnings.insert(result_.warnings.end(), crawl_notes_.begin(), crawl_notes_.end());
   for (const std::string& w : ode_->warnings()) result_.warnings.push_back(w);
   result_.wall_seconds = seconds();
