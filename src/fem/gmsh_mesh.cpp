@@ -1,5 +1,6 @@
 #include "rccm/fem/gmsh_mesh.hpp"
 
+#include "rccm/base/child_process.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/base/memory.hpp"
 #include "rccm/base/suggest.hpp"
@@ -10,29 +11,29 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <csignal>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <map>
-#include <mutex>
 #include <set>
 #include <sstream>
+#include <type_traits>
 
 namespace rccm {
 
 namespace {
 
-/// gmsh's library state for one read: initialized without reading the user's gmshrc,
-/// silent, its messages collected, no parameter left from an earlier read (gmsh keeps
-/// them across finalize); finalized on every way out. gmsh's state is global: one read at
-/// a time (a sweep builds its cases' models in parallel threads).
+/// gmsh's library state for one read, in the child process that reads (in_gmsh_process):
+/// initialized without reading the user's gmshrc, silent, its messages collected;
+/// finalized on every way out.
 class GmshSession {
  public:
-  GmshSession() : lock_(mutex()) {
+  GmshSession() {
     gmsh::initialize(0, nullptr, false);
     gmsh::option::setNumber("General.Terminal", 0);
     gmsh::logger::start();
-    gmsh::onelab::clear();
   }
   ~GmshSession() { gmsh::finalize(); }
   GmshSession(const GmshSession&) = delete;
@@ -44,13 +45,6 @@ class GmshSession {
     gmsh::logger::getLastError(e);
     return e.empty() ? fallback : e;
   }
-
- private:
-  static std::mutex& mutex() {
-    static std::mutex m;
-    return m;
-  }
-  std::lock_guard<std::mutex> lock_;
 };
 
 const char* group_kind(int dim) { return dim == 0 ? "point" : dim == 1 ? "curve" : dim == 2 ? "surface" : "volume"; }
@@ -381,31 +375,127 @@ class Reader {
   std::map<std::size_t, int> index_;
 };
 
+/// The mesh as bytes, from the child that read it to the caller: numbers as the machine
+/// holds them (the same binary on both ends), strings and lists after their length.
+class Packer {
+ public:
+  template <class T>
+  void put(const T& v) {
+    static_assert(std::is_arithmetic_v<T>);
+    bytes.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void put(const std::string& s) { put(s.size()), bytes += s; }
+  void put(const Eigen::Vector3d& x) { put(x[0]), put(x[1]), put(x[2]); }
+  template <class T>
+  void put(const std::vector<T>& v) {
+    put(v.size());
+    for (const T& e : v) put(e);
+  }
+  std::string bytes;
+};
+
+class Unpacker {
+ public:
+  explicit Unpacker(const std::string& bytes) : bytes_(bytes) {}
+  template <class T>
+  void get(T& v) {
+    static_assert(std::is_arithmetic_v<T>);
+    std::memcpy(&v, take(sizeof v), sizeof v);
+  }
+  void get(std::string& s) {
+    std::size_t n = 0;
+    get(n);
+    s.assign(take(n), n);
+  }
+  void get(Eigen::Vector3d& x) { get(x[0]), get(x[1]), get(x[2]); }
+  template <class T>
+  void get(std::vector<T>& v) {
+    std::size_t n = 0;
+    get(n);
+    RCCM_VERIFY(n <= bytes_.size() - at_, "a mesh's bytes from gmsh's process are cut short");
+    v.resize(n);
+    for (T& e : v) get(e);
+  }
+  bool done() const { return at_ == bytes_.size(); }
+
+ private:
+  const char* take(std::size_t n) {
+    RCCM_VERIFY(n <= bytes_.size() - at_, "a mesh's bytes from gmsh's process are cut short");
+    at_ += n;
+    return bytes_.data() + at_ - n;
+  }
+  const std::string& bytes_;
+  std::size_t at_ = 0;
+};
+
+std::string pack(const Mesh& m) {
+  Packer b;
+  b.put(m.dim), b.put(m.source), b.put(m.nodes), b.put(m.cells), b.put(m.cell_body), b.put(m.body_names), b.put(m.facets);
+  b.put(m.node_sets.size());
+  for (const auto& [name, nodes] : m.node_sets) b.put(name), b.put(nodes);
+  return std::move(b.bytes);
+}
+
+Mesh unpack(const std::string& bytes) {
+  Unpacker b(bytes);
+  Mesh m;
+  b.get(m.dim), b.get(m.source), b.get(m.nodes), b.get(m.cells), b.get(m.cell_body), b.get(m.body_names), b.get(m.facets);
+  std::size_t sets = 0;
+  for (b.get(sets); sets > 0; --sets) {
+    std::string name;
+    b.get(name);
+    b.get(m.node_sets[name]);
+  }
+  RCCM_VERIFY(b.done(), "a mesh's bytes from gmsh's process are longer than the mesh");
+  return m;
+}
+
+/// Why gmsh's process ended without an answer (ended by `signal`, or 0), for a message.
+std::string crash_message(int signal) {
+  if (signal == SIGKILL)
+    return "gmsh was killed while reading or meshing the file (signal 9, as the kernel does when the memory runs out): "
+           "use coarser mesh sizes (the file's parameters) or fewer refinements";
+  return std::string("gmsh stopped abnormally while reading or meshing the file (") +
+         (signal ? "signal " + std::to_string(signal) + ", " + strsignal(signal) : std::string("no answer")) +
+         "): gmsh 4.8 aborts on errors it cannot report, most often a mesh size of 0 or below on a Point or from a "
+         "Field; check the file's mesh sizes (opening it in gmsh shows its own messages)";
+}
+
+/// Runs `read` (every call to gmsh) in a child process (child_process.hpp): an error gmsh
+/// throws from its threads, or memory the kernel takes back, ends the child, not the run.
+/// Returns what `read` returned; throws InputError "<where>..." on any error.
+std::string in_gmsh_process(const std::string& where, const std::function<std::string()>& read) {
+  const ChildOutcome out = run_in_child([&]() -> std::string {
+    GmshSession session;
+    try {
+      return "M" + read();
+    } catch (const InputError& e) {
+      return "E" + std::string(e.what());
+    } catch (const std::string& e) {  // gmsh reports its errors as strings
+      return "E" + where + GmshSession::last_error(e);
+    } catch (const std::exception& e) {
+      return "E" + where + GmshSession::last_error(e.what());
+    }
+  });
+  if (!out.finished || out.bytes.empty()) throw InputError(where + crash_message(out.signal));
+  if (out.bytes[0] == 'E') throw InputError(out.bytes.substr(1));
+  return out.bytes.substr(1);
+}
+
 }  // namespace
 
 int read_gmsh_dimension(const MeshParams& p) {
-  GmshSession session;
-  try {
+  const std::string where = p.file + ": ";
+  return std::stoi(in_gmsh_process(where, [&] {
     open_with_parameters(p);
     const int dim = top_dimension();
-    if (dim == 0) throw InputError(p.file + ": " + no_physical_volume);
-    return dim;
-  } catch (const std::string& e) {
-    throw InputError(p.file + ": " + GmshSession::last_error(e));
-  } catch (const InputError&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw InputError(p.file + ": " + GmshSession::last_error(e.what()));
-  }
+    if (dim == 0) throw InputError(where + no_physical_volume);
+    return std::to_string(dim);
+  }));
 }
 
 Mesh read_gmsh(const MeshParams& p, const std::string& where) {
-  GmshSession session;
-  try {
-    return Reader(p, where).read();
-  } catch (const std::string& e) {  // gmsh reports its errors as strings
-    throw InputError(where + ": " + p.file + ": " + GmshSession::last_error(e));
-  }
+  return unpack(in_gmsh_process(where + ": " + p.file + ": ", [&] { return pack(Reader(p, where).read()); }));
 }
 
 }  // namespace rccm

@@ -154,6 +154,15 @@ Physical Surface("plate") = {1};
           "a 2D mesh lies in the plane z = 0");
   refused(fixtures + "two_blocks.geo", "mesh.parameters.Lx: the file defines no such parameter", {{"Lx", 3.0}});
   refused(fixtures + "two_blocks_v41.msh", "mesh.parameters set the DefineConstant values of a .geo file", {{"L", 3.0}});
+  // gmsh aborts on it from its OpenMP threads: its process ends, ours reports it.
+  refused(geo("point_size_negative.geo", R"(
+Point(1) = {0, 0, 0, 1}; Point(2) = {10, 0, 0, -1}; Point(3) = {10, 2, 0, 1}; Point(4) = {0, 2, 0, 1};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Physical Surface("layer") = {1};
+)"),
+          "gmsh stopped abnormally while reading or meshing the file (signal 6, Aborted): gmsh 4.8 aborts on errors it "
+          "cannot report, most often a mesh size of 0 or below on a Point");
   refused(fixtures + "missing.msh", "cannot read the file");
   refused(fixtures + "../../config/b1.cfg", "a mesh file is a gmsh .msh or .geo file");
 }

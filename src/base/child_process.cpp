@@ -1,0 +1,74 @@
+#include "rccm/base/child_process.hpp"
+
+#include <cerrno>
+#include <cstring>
+#include <fcntl.h>
+#include <stdexcept>
+#include <sys/wait.h>
+#include <thread>
+#include <unistd.h>
+
+namespace rccm {
+
+namespace {
+
+/// Writes all of `bytes` to `fd`; false when the reader is gone.
+bool write_all(int fd, const std::string& bytes) {
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) return false;
+    done += static_cast<std::size_t>(n);
+  }
+  return true;
+}
+
+[[noreturn]] void child(int fd, const std::function<std::string()>& work) {
+  const int null = ::open("/dev/null", O_WRONLY);
+  ::dup2(null, STDOUT_FILENO), ::dup2(null, STDERR_FILENO);
+  std::string bytes;
+  bool answered = false;
+  try {
+    std::thread([&] {
+      try {
+        bytes = work(), answered = true;
+      } catch (...) {
+      }
+    }).join();
+  } catch (...) {
+  }
+  // _exit: the parent's buffers, atexit handlers and static objects are the parent's.
+  ::_exit(answered && write_all(fd, bytes) ? 0 : 1);
+}
+
+}  // namespace
+
+ChildOutcome run_in_child(const std::function<std::string()>& work) {
+  int fds[2];
+  if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("cannot open a pipe: ") + std::strerror(errno));
+  const pid_t pid = ::fork();
+  if (pid < 0) {
+    const int e = errno;
+    ::close(fds[0]), ::close(fds[1]);
+    throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(e));
+  }
+  if (pid == 0) ::close(fds[0]), child(fds[1], work);
+  ::close(fds[1]);
+  ChildOutcome out;
+  char buffer[1 << 16];
+  for (;;) {
+    const ssize_t n = ::read(fds[0], buffer, sizeof buffer);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) break;
+    out.bytes.append(buffer, static_cast<std::size_t>(n));
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  out.finished = WIFEXITED(status) && WEXITSTATUS(status) == 0;
+  out.signal = WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  return out;
+}
+
+}  // namespace rccm
