@@ -48,6 +48,9 @@ check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rcc
 check; "$rccm" run "$b1" -q "${short[@]}" --set interface.g0=0.5 -o "$work/gap" >/dev/null 2>"$work/err" || fail "g0 = 0.5: $(cat "$work/err")"
 grep -q "rccm: warning: .*start bonded across a gap" "$work/err" || fail "g0 = 0.5 bonded: no warning on stderr ($(cat "$work/err"))"
 grep -q "^warning: .*start bonded across a gap" "$work/gap/report.txt" || fail "g0 = 0.5 bonded: no warning in report.txt"
+# ... before the first step: a run that then fails (here: three steps allowed) has said it too.
+check; "$rccm" run "$b1" -q --set interface.g0=0.5 --set integrator.max_steps=3 -o "$work/gap3" >/dev/null 2>"$work/err"; rc=$?
+[ "$rc" -eq 3 ] && grep -q "rccm: note: .*start bonded across a gap" "$work/err" || fail "g0 = 0.5, 3 steps: exit $rc, no note on stderr ($(cat "$work/err"))"
 
 # 2. alpha = 0.
 check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \
