@@ -145,13 +145,39 @@ class Reader {
     }
   }
 
-  /// Nodes of the mesh to come, from its meshed curves: the model's bounding box filled with
-  /// cells as long as the curves' median cell (a box over-estimates; so does a fine curve).
+  /// Nodes of the mesh to come, from its meshed curves. 2D: per surface, its bounding box
+  /// filled with cells as long as its curves' median cell, or, for a surface of four curves
+  /// whose opposite curves have as many cells (as a Transfinite Surface's), the grid they make
+  /// when it has fewer: graded structured meshes (fine along an interface, coarse across) are
+  /// not taken for uniformly fine ones. 3D: the model's box, from all curves' median cell.
   double nodes_from_curves() const {
+    if (m_.dim == 3) return fill(-1, -1, cell_lengths(-1));
+    gmsh::vectorpair surfaces;
+    gmsh::model::getEntities(surfaces, 2);
+    double nodes = 0;
+    for (const auto& [dim, tag] : surfaces) {
+      gmsh::vectorpair curves;
+      gmsh::model::getBoundary({{dim, tag}}, curves, false, false, false);
+      std::vector<double> lengths;
+      std::vector<double> counts;
+      for (const auto& curve : curves) {
+        const std::vector<double> cells = cell_lengths(curve.second);
+        lengths.insert(lengths.end(), cells.begin(), cells.end());
+        counts.push_back(double(cells.size()));
+      }
+      const double filled = fill(dim, tag, lengths);
+      const bool grid = counts.size() == 4 && counts[0] == counts[2] && counts[1] == counts[3];
+      nodes += grid ? std::min(filled, (counts[0] + 1) * (counts[1] + 1)) : filled;  // (Transfinite) grid
+    }
+    return nodes;
+  }
+
+  /// The lengths of the cells (2-node lines) of meshed curve `tag` (-1: of every curve).
+  std::vector<double> cell_lengths(int tag) const {
     std::vector<double> lengths;
     std::vector<int> types;
     std::vector<std::vector<std::size_t>> cells, nodes;
-    gmsh::model::mesh::getElements(types, cells, nodes, 1, -1);
+    gmsh::model::mesh::getElements(types, cells, nodes, 1, tag);
     for (std::size_t t = 0; t < types.size(); ++t) {
       if (types[t] != 1) continue;  // 2-node lines
       for (std::size_t c = 0; c < cells[t].size(); ++c) {
@@ -161,13 +187,19 @@ class Reader {
         lengths.push_back(std::hypot(a[0] - b[0], a[1] - b[1], a[2] - b[2]));
       }
     }
+    return lengths;
+  }
+
+  /// Nodes of entity (`dim`, `tag`)'s bounding box (-1, -1: the model's) meshed uniformly
+  /// with cells of the median of `lengths`: about 1.15 / h^2 per unit area (triangles),
+  /// 1.4 / h^3 per unit volume (tetrahedra).
+  double fill(int dim, int tag, std::vector<double> lengths) const {
     if (lengths.empty()) return 0;
     std::nth_element(lengths.begin(), lengths.begin() + lengths.size() / 2, lengths.end());
     const double h = std::max(lengths[lengths.size() / 2], 1e-300);
     double x0, y0, z0, x1, y1, z1;
-    gmsh::model::getBoundingBox(-1, -1, x0, y0, z0, x1, y1, z1);
+    gmsh::model::getBoundingBox(dim, tag, x0, y0, z0, x1, y1, z1);
     const double extent[3] = {std::max(x1 - x0, h), std::max(y1 - y0, h), std::max(z1 - z0, h)};
-    // Nodes per unit measure of a mesh of size h: about 1.15 / h^2 (triangles), 1.4 / h^3 (tetrahedra).
     return m_.dim == 2 ? 1.15 * extent[0] * extent[1] / (h * h) : 1.4 * extent[0] * extent[1] * extent[2] / (h * h * h);
   }
 

@@ -124,6 +124,32 @@ Physical Surface("body") = {1};
   CHECK(total == Approx(2.0).epsilon(1e-12));
 }
 
+TEST_CASE("gmsh: a mesh too fine for the memory is refused before meshing and a graded structured one is not", "[gmsh]") {
+  // Uniformly tiny, on a rectangle split into five curves (a point on its top side): 1.15 A / h^2
+  // nodes, 2 unknowns each: 2 x 1.15 x 20 / 1e-8 = 4.6e9; on four curves, the grid they make:
+  // 2 x (1e5 + 1) x (2e4 + 1) = 4.0e9.
+  const auto plate = [](const std::string& name, const std::string& top) {
+    return geo(name, R"(
+DefineConstant[ h = {0.5, Name "h"} ];
+Point(1) = {0, 0, 0}; Point(2) = {10, 0, 0}; Point(3) = {10, 2, 0}; Point(4) = {0, 2, 0}; Point(5) = {5, 2, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(4) = {4, 1};
+)" + top + R"(
+Plane Surface(1) = {1};
+Mesh.MeshSizeMin = h; Mesh.MeshSizeMax = h;
+Physical Surface("plate") = {1};
+)");
+  };
+  const std::string five = plate("five.geo", "Line(3) = {3, 5}; Line(5) = {5, 4}; Curve Loop(1) = {1, 2, 3, 5, 4};");
+  const std::string four = plate("four.geo", "Line(3) = {3, 4}; Curve Loop(1) = {1, 2, 3, 4};");
+  CHECK_THROWS_WITH(read(five, 0, {{"h", 1e-4}}), Catch::Contains("meshing it (about 4.6e+09 unknowns) needs about"));
+  CHECK_THROWS_WITH(read(four, 0, {{"h", 1e-4}}), Catch::Contains("meshing it (about 4e+09 unknowns) needs about"));
+  CHECK(read(five, 0, {{"h", 0.5}}).num_nodes() > 0);
+  // The double cantilever beam's arms, 0.005 mm cells along the interface and 6 through an arm
+  // (Transfinite): a uniform fill would ask 5e7 unknowns; each arm is (25 + 1000 + 8000 + 30 + 1) x 7 nodes.
+  const Mesh dcb = read(std::string(RCCM_SOURCE_DIR) + "/config/dcb.geo", 0, {{"dx", 0.005}});
+  CHECK(dcb.num_nodes() == 2 * 9056 * 7);
+}
+
 TEST_CASE("gmsh: a bad mesh file is refused, naming the file and the physical group", "[gmsh]") {
   const auto refused = [](const std::string& file, const std::string& expect, std::map<std::string, double> parameters = {}) {
     INFO(file);
