@@ -31,8 +31,14 @@ void progress_line(const AcceptedStep& a, double T) {
 
 Recorder::Recorder(const Config& cfg, RunOptions options)
     : cfg_(cfg), options_(std::move(options)), start_(std::chrono::steady_clock::now()) {
-  if (options_.restart) resume_ = std::make_unique<Checkpoint>(read_checkpoint(cfg.output.directory, cfg));
-  else if (options_.write_files) check_output_directory(cfg, options_.force);
+  if (!options_.restart) {
+    if (options_.write_files) check_output_directory(cfg, options_.force);
+    return;
+  }
+  resume_ = std::make_unique<Checkpoint>(read_checkpoint(cfg.output.directory, cfg));
+  if (resume_->state.t >= cfg.time.T)
+    throw InputError(checkpoint_path(cfg.output.directory) + ": the run reached time.T = " + csv_number(cfg.time.T) +
+                     " s: there is nothing to go on with, its results stand (to run it again: --force)");
 }
 
 double Recorder::seconds() const {
@@ -77,6 +83,9 @@ void Recorder::open(const Model& model) {
   if (resume_) {
     point.t = resume_->state.t;
     for (const Snapshot& s : resume_->progress.snapshots) point.output_times.push_back(s.t);
+    const int step = resume_->step, every = cfg_.output.every;
+    point.frame_at_t = step == 0 || (every > 0 && step % every == 0) ||
+                       (!point.output_times.empty() && point.output_times.back() == point.t);
   }
   writer_ = std::make_unique<ResultWriter>(model, cfg_, directory_->path(), resume_ ? &point : nullptr);
 }

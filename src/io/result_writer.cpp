@@ -110,7 +110,7 @@ ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::str
     if (name.rfind("interface_t", 0) == 0 && std::find(keep.begin(), keep.end(), name) == keep.end())
       std::filesystem::remove(entry.path());
   }
-  vtk_.resume(resume->t);
+  vtk_.resume(resume->t, resume->frame_at_t);
 }
 
 void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyTerms& e) {

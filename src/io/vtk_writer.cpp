@@ -150,15 +150,18 @@ void VtkWriter::write_collections() const {
   write_collection(directory_ + "/interface.pvd", interface);
 }
 
-void VtkWriter::resume(double t) {
+void VtkWriter::resume(double t, bool frame_at_t) {
   // The frames the earlier run listed (our own results.pvd: one DataSet line each).
   std::ifstream in(directory_ + "/results.pvd");
-  const std::regex entry("timestep=\"([^\"]*)\" file=\"mesh_([0-9]+)\\\\.vtu\"");
+  const std::regex entry("timestep=\"([^\"]*)\" file=\"mesh_([0-9]+)\\.vtu\"");
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(t));
   std::smatch m;
   std::vector<std::pair<double, std::string>> kept;
-  for (std::string line; std::getline(in, line);)
-    if (std::regex_search(line, m, entry) && std::stod(m[1]) <= t + 1e-9 * std::max(1.0, std::abs(t)))
-      kept.emplace_back(std::stod(m[1]), m[2]);
+  for (std::string line; std::getline(in, line);) {
+    if (!std::regex_search(line, m, entry)) continue;
+    const double frame_t = std::stod(m[1]);
+    if (frame_t < t - tolerance || (frame_at_t && frame_t <= t + tolerance)) kept.emplace_back(frame_t, m[2]);
+  }
   frames_ = kept;
   for (std::size_t k = frames_.size();; ++k) {
     const std::string vtu = directory_ + "/mesh_" + frame_name(k) + ".vtu", vtp = directory_ + "/interface_" + frame_name(k) + ".vtp";

@@ -8,11 +8,13 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <csignal>
 #include <functional>
 #include <limits>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 
 using namespace rccm;
 namespace fs = std::filesystem;
@@ -34,6 +36,11 @@ RunResult run(const Config& cfg, bool restart = false, int stop_at_step = -1) {
     if (a.step == stop_at_step) request_stop(SIGTERM);
   };
   return Simulation(cfg, o).run();
+}
+
+std::string text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 std::size_t lines(const std::string& path) {
@@ -92,7 +99,22 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
       CHECK(restarted.integrator.steps == reference.integrator.steps);
       CHECK(lines(parts + "/history.csv") == lines(whole + "/history.csv"));
     }
-    CHECK(!fs::exists(parts + "/mesh_" + std::string("0004.vtu")));  // three output times and T
+    // ParaView's collections list the uninterrupted run's frames (t = 0, three output times
+    // and T), each file there: the restart keeps the frames before its checkpoint.
+    for (const char* pvd : {"/results.pvd", "/interface.pvd"}) {
+      INFO(pvd);
+      const std::string frames = text(parts + pvd);
+      CHECK(frames == text(whole + pvd));
+      CHECK(std::count(frames.begin(), frames.end(), '\n') > 4);
+    }
+    for (const char* frame : {"0000", "0001", "0002", "0003"})
+      CHECK((fs::exists(parts + "/mesh_" + frame + ".vtu") && fs::exists(parts + "/interface_" + frame + ".vtp")));
+    CHECK(!fs::exists(parts + "/mesh_" + std::string("0004.vtu")));
+    // A restart of the finished run is refused, its files untouched.
+    const std::string report = text(parts + "/report.txt");
+    CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains("checkpoint.txt: the run reached time.T = ") && Catch::Contains(" s: there is nothing to go on with"));
+    CHECK(text(parts + "/report.txt") == report);
+    CHECK(fs::exists(parts + "/mesh_0003.vtu"));
     fs::remove_all(whole);
     fs::remove_all(parts);
   }

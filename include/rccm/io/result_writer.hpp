@@ -26,6 +26,7 @@ namespace rccm {
 struct ResumePoint {
   double t = 0;
   std::vector<double> output_times;  // of the snapshots taken up to t
+  bool frame_at_t = false;           // the uninterrupted run has a ParaView frame at t (not only the stop's)
 };
 
 /// The debonded length: the measure of the interface where beta < 1/2 (the sum of the

@@ -24,9 +24,10 @@ class VtkWriter {
   /// second frame at the time of the last one is not written.
   void write(const InterfaceState& s, const BodyState& b);
 
-  /// Takes up the files of an earlier run: keeps the frames of its results.pvd up to time t,
-  /// removes the later ones.
-  void resume(double t);
+  /// Takes up the files of an earlier run: keeps the frames of its results.pvd before time t,
+  /// and the one at t if `frame_at_t` (not a stopped run's frame of its last state), removes
+  /// the others.
+  void resume(double t, bool frame_at_t);
 
  private:
   void write_bodies(const std::string& file, const BodyState& b) const;
