@@ -9,6 +9,8 @@
 #     claim a report that is not there;
 #  6. SIGINT during a sweep: exit 130, the running case stops at an accepted step, no other
 #     case starts, summary.csv says which cases did not run;
+#     the same sweep again is refused, its summary untouched, the interrupted case's restart
+#     suggested; a sweep's overlay command names its own cases;
 #  7. a second SIGINT exits at once.
 set -u
 rccm=$1; src=$2
@@ -109,6 +111,20 @@ check; [ "$rc" -eq 130 ] || fail "sweep SIGINT: exit $rc, want 130"
 [ -e "$out/alpha=2" ] && fail "sweep SIGINT: the next case started"
 grep -q '^alpha=1,1,interrupted' "$out/summary.csv" || fail "sweep SIGINT: summary.csv lacks the interrupted case"
 grep -q '^alpha=2,2,not run' "$out/summary.csv" || fail "sweep SIGINT: summary.csv lacks the case not run"
+
+# ... and the same sweep again into its directory: refused (exit 2) naming the case, the
+# interrupted case's --restart suggested, summary.csv untouched.
+cp "$out/summary.csv" "$work/summary.before"
+"$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 -o "$out" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 2 ] && grep -q "sweep: case alpha=1: .*already holds the results of a run (history.csv); give --restart $out/alpha=1 to go on with it" "$work/err" \
+  || fail "sweep again: exit $rc, $(cat "$work/err")"
+cmp -s "$out/summary.csv" "$work/summary.before" || fail "sweep again: summary.csv changed"
+# A finished run's directory suggests no restart; a sweep's overlay command names its own cases.
+"$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.alpha=1,2 -o "$work/sw2" >"$work/sw2.out" 2>&1 || fail "sweep sw2: $(cat "$work/sw2.out")"
+check; grep -q "plots: tools/plot --overlay '$work/sw2' '$work/sw2/alpha=1' '$work/sw2/alpha=2'$" "$work/sw2.out" || fail "sweep overlay command: $(tail -1 "$work/sw2.out")"
+"$rccm" run "$b1" -q "${short[@]}" --set interface.alpha=1 -o "$work/sw2/alpha=1" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 2 ] && ! grep -q -- "--restart" "$work/err" && grep -q "give --force to overwrite them, or another directory (-o DIR)" "$work/err" \
+  || fail "a finished run's directory: exit $rc, $(cat "$work/err")"
 
 # 7. A second SIGINT: at once, without waiting for the step (B1 refined 16 times: steps of ~0.1 s).
 out=$work/twice

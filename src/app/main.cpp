@@ -8,6 +8,7 @@
 #include "rccm/app/sweep.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/io/config_reader.hpp"
+#include "rccm/io/output_directory.hpp"
 #include "rccm/la/parallel.hpp"
 
 #include <CLI/CLI.hpp>
@@ -43,6 +44,15 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   const rccm::Config cfg = rccm::load_config(config_file, fixed);
   if (directory.empty()) directory = cfg.output.directory + "-sweep";
   std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, directory);
+  if (!force)  // as `rccm run`: a case's results are not overwritten, and nothing is written
+    for (const rccm::SweepCase& c : cases) {
+      try {
+        rccm::check_output_directory(c.config, false);
+      } catch (const rccm::InputError& e) {
+        throw rccm::InputError("sweep: case " + c.name + ": " + e.what() +
+                               " (the case's command line is in jobs.txt; --force runs the whole sweep afresh)");
+      }
+    }
   for (const rccm::SweepCase& c : cases)  // PETSc is not thread-safe: its cases one at a time
     if (jobs > 1 && (c.config.solver.linear.kind == rccm::LinearSolver::Mumps ||
                      c.config.solver.linear.kind == rccm::LinearSolver::CgGamg))
@@ -52,8 +62,8 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << directory << "\n";
   rccm::run_sweep(cases, jobs, force);
   rccm::write_sweep_summary(std::cout, directory, axes, cases, rccm_path, config_file);
-  std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: tools/plot --overlay "
-            << directory << " " << directory << "/*/\n";
+  std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: "
+            << rccm::overlay_command(directory, cases) << "\n";
   int status = 0;
   for (const rccm::SweepCase& c : cases) {
     if (c.status == rccm::CaseStatus::Interrupted || c.status == rccm::CaseStatus::NotRun) {

@@ -6,8 +6,12 @@
 #include "rccm/io/config_reader.hpp"
 #include "rccm/io/csv.hpp"
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cstdio>
+#include <iterator>
+#include <optional>
 #include <ostream>
 #include <thread>
 
@@ -127,12 +131,19 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   for (std::thread& t : pool) t.join();
 }
 
+std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases) {
+  std::string command = "tools/plot --overlay " + shell_quoted(directory);
+  for (const SweepCase& c : cases) command += " " + shell_quoted(c.config.output.directory);
+  return command;
+}
+
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
                          const std::vector<SweepCase>& cases, const std::string& rccm_path,
                          const std::string& config_file) {
   // The output times are those of the config (every case has the same unless a case sweeps them).
   std::vector<double> times = cases.front().config.output.times;
-  times.push_back(cases.front().config.time.T);
+  const double T = cases.front().config.time.T;
+  if (times.empty() || times.back() < T * (1 - 1e-12)) times.push_back(T);  // T once, an output time or not
   std::vector<std::string> header = {"case"};
   for (const SweepAxis& a : axes) header.push_back(a.path);
   header.insert(header.end(), {"status", "peak force [N]", "t at peak [s]"});
@@ -161,24 +172,27 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
     std::vector<std::string> row = {c.name};
     row.insert(row.end(), c.values.begin(), c.values.end());
     row.push_back(case_status_name(c.status));
-    std::vector<double> figures;
+    // Empty where the case has no such figure (not complete, or no snapshot at that time).
+    std::vector<std::optional<double>> figures(2 + times.size() + 5);
     if (complete) {
-      figures = {r.peak_force.empty() ? 0.0 : r.peak_force[0], r.peak_time.empty() ? 0.0 : r.peak_time[0]};
+      figures[0] = r.peak_force.empty() ? 0.0 : r.peak_force[0];
+      figures[1] = r.peak_time.empty() ? 0.0 : r.peak_time[0];
       for (std::size_t k = 0; k < times.size(); ++k)
-        figures.push_back(k < r.snapshots.size() ? r.snapshots[k].debonded_length : 0.0);
-      figures.insert(figures.end(), {r.energy.damage_dissipation, r.energy.friction_dissipation,
-                                     r.energy.relative_error(), double(r.integrator.steps), r.wall_seconds});
+        for (const Snapshot& s : r.snapshots)
+          if (std::abs(s.t - times[k]) <= 1e-12 * T) figures[2 + k] = s.debonded_length;
+      const double last[] = {r.energy.damage_dissipation, r.energy.friction_dissipation, r.energy.relative_error(),
+                             double(r.integrator.steps), r.wall_seconds};
+      std::copy(std::begin(last), std::end(last), figures.end() - 5);
     }
-    const std::size_t cells = 2 + times.size() + 5;
-    for (std::size_t k = 0; k < cells; ++k) row.push_back(complete ? csv_number(figures[k]) : "");
+    for (const std::optional<double>& f : figures) row.push_back(f ? csv_number(*f) : "");
     row.push_back(one_line(c.error));
     csv_file.stream() << csv_line(row) << "\n";
 
     std::snprintf(buf, sizeof buf, "%-28s %-12s", c.name.c_str(), case_status_name(c.status));
     out << buf;
-    for (std::size_t k = 0; k < cells; ++k) {
-      if (complete) std::snprintf(buf, sizeof buf, " %14.6g", figures[k]);
-      out << (complete ? std::string(buf) : std::string(14, ' ') + "-");
+    for (const std::optional<double>& f : figures) {
+      if (f) std::snprintf(buf, sizeof buf, " %14.6g", *f);
+      out << (f ? std::string(buf) : std::string(14, ' ') + "-");
     }
     out << (c.error.empty() ? "" : "   " + one_line(c.error)) << "\n";
 

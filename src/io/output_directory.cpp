@@ -45,6 +45,15 @@ void remove_plots(const fs::path& plots) {
   if (fs::is_empty(plots, ec)) fs::remove(plots, ec);
 }
 
+/// Whether `dir` holds a run that stopped before T with a checkpoint (its report not complete).
+bool stopped(const fs::path& dir) {
+  std::error_code ec;
+  std::ifstream report(dir / "report.txt");
+  for (std::string line; std::getline(report, line);)
+    if (line.rfind("status: complete", 0) == 0) return false;
+  return fs::exists(dir / "checkpoint.txt", ec);
+}
+
 /// Whether a file can be created in `dir` (a probe created and removed at once: permissions,
 /// a read-only file system and /proc all answer, also for root).
 bool writable(const fs::path& dir) {
@@ -66,8 +75,9 @@ void check_output_directory(const Config& cfg, bool force) {
     if (!writable(dir)) throw InputError(where + ": cannot write into '" + dir.string() + "'");
     for (const char* mark : result_marks)
       if (!force && fs::exists(dir / mark, ec))
-        throw InputError(where + ": '" + dir.string() + "' already holds the results of a run (" + mark +
-                         "); give --force to overwrite them, or another directory (--set output.directory=...)");
+        throw InputError(where + ": '" + dir.string() + "' already holds the results of a run (" + mark + "); give " +
+                         (stopped(dir) ? "--restart " + dir.string() + " to go on with it, " : "") +
+                         "--force to overwrite them, or another directory (-o DIR)");
     return;
   }
   // It will be created: its nearest existing ancestor must be a writable directory.

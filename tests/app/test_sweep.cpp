@@ -5,6 +5,8 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
+
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -69,6 +71,34 @@ TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha"
   CHECK(p10 < p100);
   // A more viscous interface debonds less by T.
   CHECK(cases[2].result.snapshots.back().debonded_length < cases[0].result.snapshots.back().debonded_length);
+}
+
+TEST_CASE("a sweep whose output times end at T: one column for T, each cell the case's own debonded length", "[sweep]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_T";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<SweepAxis> axes = {{"interface.alpha", {"1", "10"}}};
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {"output.times=[3.571, 10.0]"}, axes, dir.string());
+  run_sweep(cases, 1);
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
+  CHECK(std::count(summary.header.begin(), summary.header.end(), "debonded at t=10 [mm]") == 1);
+  REQUIRE(summary.rows.size() == 2);
+  const auto column = [&](const std::string& name) {
+    return std::size_t(std::find(summary.header.begin(), summary.header.end(), name) - summary.header.begin());
+  };
+  REQUIRE(column("debonded at t=3.571 [mm]") < summary.header.size());
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    // The case's curves.csv at its output times (its last line is T).
+    const test::CsvTable curves = test::read_csv((dir / cases[k].name / "curves.csv").string());
+    const std::vector<double> t = curves.numbers("t [s]"), length = curves.numbers("debonded length [mm]");
+    const auto at = [&](double time) { return length[std::find(t.begin(), t.end(), time) - t.begin()]; };
+    CHECK(at(10.0) > 0);
+    CHECK(std::stod(summary.rows[k][column("debonded at t=10 [mm]")]) == Approx(at(10.0)).epsilon(1e-9));
+    CHECK(std::stod(summary.rows[k][column("debonded at t=3.571 [mm]")]) == Approx(at(3.571)).epsilon(1e-9));
+  }
+  fs::remove_all(dir);
 }
 
 TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the failed row has a status and empty cells",

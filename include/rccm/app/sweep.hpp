@@ -47,6 +47,10 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
 /// step and starts no other: the cases not run keep the status NotRun.
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
+/// The tools/plot command that overlays this sweep's cases into `directory` (the cases named
+/// one by one: the directory may also hold an earlier sweep's).
+std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases);
+
 /// summary.csv (one row per case: its value of each axis, its status, its figures, empty
 /// cells where a case did not complete) and jobs.txt in `directory`, and the table on `out`.
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
