@@ -44,6 +44,8 @@ check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare pat
 check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/dash-o" >/dev/null 2>"$work/err" || fail "-o DIR: $(cat "$work/err")"
 [ -s "$work/dash-o/report.txt" ] || fail "-o DIR: no report there"
 
+check; "$rccm" run "$src/config" >/dev/null 2>"$work/err"; rc=$?
+[ "$rc" -eq 2 ] && grep -q "config: a directory, not a config file" "$work/err" || fail "run DIR: exit $rc, $(cat "$work/err")"
 check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rccm --version: $("$rccm" --version)"
 
 # A doubtful interface is run, and said: on stderr and in the report.

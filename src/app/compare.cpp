@@ -87,7 +87,11 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
   std::vector<CompareCase> cases;
   const std::vector<std::string> solver_names =
       solvers.empty() ? std::vector<std::string>{contact_method_name(cfg.solver.method)} : solvers;
-  for (const std::string& name : integrators)
+  // alpha = 0 on every interface: the rate-independent limit, whatever the integrators asked
+  // (as `run` and `sweep`); the viscous integrators need alpha > 0 everywhere.
+  const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
+  const std::vector<std::string> integrator_names = limit ? std::vector<std::string>{"rate-independent"} : integrators;
+  for (const std::string& name : integrator_names)
     for (const std::string& solver : solver_names) {
       CompareCase c{solvers.size() > 1 ? name + "/" + solver : name, cfg, {}};
       c.config.integrator.method = integrator_of(name);

@@ -214,8 +214,9 @@ int main(int argc, char** argv) {
       std::printf("# results in %s (report.txt, interface_t*.csv, history.csv, curves.csv, results.pvd)\n",
                   cfg.output.directory.c_str());
     } else {
+      const std::vector<rccm::CompareCase> cases = rccm::run_comparison(cfg, integrators, solvers, euler_steps);
       std::cout << "# " << config_file << "\n";
-      rccm::print_comparison(std::cout, rccm::run_comparison(cfg, integrators, solvers, euler_steps));
+      rccm::print_comparison(std::cout, cases);
     }
     return 0;
   } catch (const rccm::InputError& e) {

@@ -868,6 +868,8 @@ namespace {
 /// literals (check_integer_literals) and @include lines, which name a file relative to the
 /// directory of the top config (libconfig's include directory).
 void check_config_file(const std::string& path, const std::string& include_dir, int depth = 0) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": a directory, not a config file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot read the file (does it exist?)");
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());

@@ -20,7 +20,8 @@ struct CompareCase {
 
 /// Runs `cfg` once per integrator name ("arkode", "euler", "rate-independent", "contact-only")
 /// and contact solver name ("bipotential", "rccm", "newton"; empty: the config's), Euler with
-/// `euler_steps` fixed steps (0: time.steps). Throws InputError for an unknown name.
+/// `euler_steps` fixed steps (0: time.steps); alpha = 0 on every interface runs the
+/// rate-independent limit once per solver instead. Throws InputError for an unknown name.
 std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std::string>& integrators,
                                         const std::vector<std::string>& solvers, int euler_steps);
 

@@ -1,0 +1,42 @@
+// `rccm compare` (app/compare): the cases asked, each a full run; the contact solvers agree
+// on beta; alpha = 0 is the rate-independent limit, as `rccm run` makes it.
+#include "helpers.hpp"
+#include "rccm/app/compare.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <sstream>
+
+using namespace rccm;
+
+TEST_CASE("compare: each integrator with each solver, the solvers agree on beta", "[compare]") {
+  const Config cfg = load_config(test::shipped("b1.cfg"), {"time.T=2.0", "output.times=[1.0]"});
+  const std::vector<CompareCase> cases = run_comparison(cfg, {"arkode", "euler"}, {"bipotential", "newton"}, 60);
+  REQUIRE(cases.size() == 4);
+  CHECK(cases[0].label == "arkode/bipotential");
+  CHECK(cases[3].label == "euler/newton");
+  CHECK(cases[1].config.integrator.method == Method::Arkode);
+  CHECK(cases[2].config.integrator.method == Method::Euler);
+  CHECK(cases[2].config.time.steps == 60);
+  CHECK(cases[1].config.solver.method == ContactMethod::Newton);
+  // The same integrator: Euler's same steps give beta to the solvers' tolerance; ARKODE
+  // chooses its steps from the solves, and agrees to its own tolerance.
+  for (auto [k, tolerance] : {std::pair{0, 1e-4}, std::pair{2, 1e-8}}) {
+    const Eigen::VectorXd &a = cases[k].result.snapshots.back().beta, &b = cases[k + 1].result.snapshots.back().beta;
+    CHECK(a.minCoeff() < 0.5);  // debonding under way at T
+    CHECK((a - b).cwiseAbs().maxCoeff() < tolerance);
+  }
+}
+
+TEST_CASE("compare: alpha = 0 runs the rate-independent limit once per solver, as rccm run does", "[compare]") {
+  const Config cfg = load_config(test::shipped("b1.cfg"), {"interface.alpha=0"});
+  REQUIRE(cfg.integrator.method == Method::RateIndependent);
+  const std::vector<CompareCase> cases = run_comparison(cfg, {"arkode", "euler"}, {}, 0);
+  REQUIRE(cases.size() == 1);
+  CHECK(cases[0].config.integrator.method == Method::RateIndependent);
+  const RunResult run = Simulation(cfg).run();
+  CHECK(cases[0].result.snapshots.back().beta == run.snapshots.back().beta);
+  std::ostringstream table;
+  print_comparison(table, cases);
+  CHECK_THAT(table.str(), Catch::Contains("rate-independent"));
+}
