@@ -59,7 +59,7 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
       throw rccm::InputError("sweep: case " + c.name + " solves the body with PETSc (solver.linear), which runs one "
                              "case at a time: give -j 1");
   std::filesystem::create_directories(directory);
-  std::cout << "# " << cases.size() << " cases on " << jobs << " threads, in " << directory << "\n";
+  std::cout << "# " << cases.size() << " cases on " << jobs << (jobs == 1 ? " thread" : " threads") << ", in " << directory << "\n";
   rccm::run_sweep(cases, jobs, force);
   rccm::write_sweep_summary(std::cout, directory, axes, cases, rccm_path, config_file);
   std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: "

@@ -184,8 +184,14 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
                              double(r.integrator.steps), r.wall_seconds};
       std::copy(std::begin(last), std::end(last), figures.end() - 5);
     }
+    // The message: why a case did not complete, or the warnings of one that did (an
+    // unstable Euler, a doubtful interface): a complete row is not a trusted one.
+    std::string message = c.error;
+    for (const std::string& w : complete ? r.warnings : std::vector<std::string>{})
+      message += (message.empty() ? "warning: " : "; warning: ") + w;
+    message = one_line(message);
     for (const std::optional<double>& f : figures) row.push_back(f ? csv_number(*f) : "");
-    row.push_back(one_line(c.error));
+    row.push_back(message);
     csv_file.stream() << csv_line(row) << "\n";
 
     std::snprintf(buf, sizeof buf, "%-28s %-12s", c.name.c_str(), case_status_name(c.status));
@@ -194,7 +200,7 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
       if (f) std::snprintf(buf, sizeof buf, " %14.6g", *f);
       out << (f ? std::string(buf) : std::string(14, ' ') + "-");
     }
-    out << (c.error.empty() ? "" : "   " + one_line(c.error)) << "\n";
+    out << (message.empty() ? "" : "   " + message) << "\n";
 
     jobs_file.stream() << shell_quoted(rccm_path) << " run " << shell_quoted(config_file) << " -q";
     for (const std::string& o : c.overrides) jobs_file.stream() << " --set " << shell_quoted(o);

@@ -43,11 +43,17 @@ void EulerIntegrator::restore(const std::vector<double>& d) {
 std::vector<std::string> EulerIntegrator::warnings() const {
   if (max_ratio_ <= 2 && clamped_ == 0) return {};
   std::ostringstream m;
-  m << "explicit Euler was unstable: dt (Cn u_n^2 + Ct u_t^2) / alpha reached " << max_ratio_
-    << " (stable below 2)";
-  if (clamped_ > 0) m << " and beta was clamped to 0 at " << clamped_ << " node-steps";
-  m << "; beta is not time-accurate. Use integrator.method = \"arkode\", or at least "
-    << static_cast<long>(std::ceil(ode_.steps() * max_ratio_ / 2)) << " steps (time.steps)";
+  const bool unstable = max_ratio_ > 2;  // beta_{n+1} = beta_n (1 - ratio) + ...: stable for ratio < 2
+  if (unstable)
+    m << "explicit Euler was unstable: dt (Cn u_n^2 + Ct u_t^2) / alpha reached " << max_ratio_ << " (stable below 2)";
+  else
+    m << "explicit Euler overshot beta = 0: dt (Cn u_n^2 + Ct u_t^2) / alpha reached " << max_ratio_
+      << " (above 1 a step passes beta = 0; stable below 2)";
+  if (clamped_ > 0) m << (unstable ? " and" : ";") << " beta was clamped to 0 at " << clamped_ << " node-steps";
+  m << "; beta is not time-accurate. Use integrator.method = \"arkode\" (its steps follow this ratio)";
+  if (unstable)
+    m << ", or at least " << static_cast<long>(std::ceil(ode_.steps() * max_ratio_ / 2))
+      << " steps (time.steps; rccm compare: --euler-steps); the ratio grows as nodes open, so more may be needed";
   return {m.str()};
 }
 

@@ -101,6 +101,24 @@ TEST_CASE("a sweep whose output times end at T: one column for T, each cell the 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a sweep's complete case that warned says so in its row", "[sweep]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_warning";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<SweepAxis> axes = {{"integrator.method", {"euler"}}};  // B1's Euler-210: unstable
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {"time.steps=210"}, axes, dir.string());
+  run_sweep(cases, 1);
+  REQUIRE(cases[0].status == CaseStatus::Complete);
+  REQUIRE(!cases[0].result.warnings.empty());
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
+  CHECK(summary.rows.at(0).at(2) == "complete");
+  CHECK_THAT(summary.rows.at(0).back(), Catch::StartsWith("warning: explicit Euler was unstable"));
+  CHECK_THAT(table.str(), Catch::Contains("complete") && Catch::Contains("warning: explicit Euler was unstable"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the failed row has a status and empty cells",
           "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_failed";

@@ -95,8 +95,20 @@ TEST_CASE("explicit Euler on the scalar system: first order, and it says when it
   EulerIntegrator euler(stiff, time_grid(T, 210, {}));
   euler.advance(T);
   REQUIRE(euler.warnings().size() == 1);
-  CHECK_THAT(euler.warnings()[0], Catch::Contains("unstable") && Catch::Contains("clamped"));
+  // The first step past dt C u^2 / alpha = 1 overshoots beta = 0 (ratio 1.24): clamped, and
+  // beta stays 0 (no rate left: the ratio does not grow further). Said as an overshoot, not as
+  // an instability whose ratio (1.24) contradicts "stable below 2".
+  CHECK_THAT(euler.warnings()[0], Catch::Contains("explicit Euler overshot beta = 0") && Catch::Contains("clamped") &&
+                                      !Catch::Contains("unstable"));
   CHECK(stiff.committed_beta()[0] >= 0.0);  // clamped, never negative
+  // dt C v^2 t^2 / alpha would reach 0.1 x 0.15 x 100 = 1.5 at T; with w = 0 the first step
+  // past 1 passes beta = 0.
+  ScalarOpening overshoot(0.15, 1.0, 0.0, 1.0);
+  EulerIntegrator coarse(overshoot, time_grid(T, 100, {}));
+  coarse.advance(T);
+  REQUIRE(coarse.warnings().size() == 1);
+  CHECK_THAT(coarse.warnings()[0], Catch::Contains("explicit Euler overshot beta = 0: dt (Cn u_n^2 + Ct u_t^2) / alpha reached 1.") &&
+                                       Catch::Contains("clamped") && !Catch::Contains("unstable") && !Catch::Contains("at least"));
 }
 
 TEST_CASE("the rate-independent integrator is exact on the scalar system: contact-only keeps beta", "[integrator]") {
