@@ -105,6 +105,7 @@ void Recorder::start(BetaOde& ode) {
   const RunResult& p = resume_->progress;
   result_.snapshots = p.snapshots;
   if (writer_) result_.steps = writer_->resumed_steps();  // processes other than 0 write nothing (la/parallel.hpp)
+  result_.restarted_at = resume_->state.t;
   result_.peak_force = p.peak_force;
   result_.peak_time = p.peak_time;
   earlier_ = p.integrator;
@@ -204,6 +205,9 @@ RunResult Recorder::close(const std::string& stopped) {
   if (!stopped.empty() && (result_.snapshots.empty() || result_.snapshots.back().t < ode_->committed().t)) snapshot();
   if (options_.progress) std::fputs("\n", stderr);
   result_.integrator = earlier_ + integrator_->stats();
+  // The accepted steps as the files hold them: a stop asked at a step ends the run inside the
+  // integrator's step, before it counts it.
+  result_.integrator.steps = ode_->steps();
   result_.solves = ode_->totals();
   result_.energy = energy_->terms();
   result_.warnings = model_->interface().notes;

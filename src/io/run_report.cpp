@@ -86,7 +86,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "  contact iterations      " << fmt("%.2f", double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves))
       << " per solve, max " << r.solves.max_sweeps << "\n"
       << "  wall time               " << fmt("%.3f", r.wall_seconds) << " s (setup " << fmt("%.4f", r.setup_seconds)
-      << " s)\n";
+      << " s)" << (r.restarted_at >= 0 ? " since the restart at t = " + fmt("%g", r.restarted_at) + " s" : "") << "\n";
 
   const EnergyTerms& e = r.energy;
   const bool rate_independent = cfg.integrator.method == Method::RateIndependent;
@@ -154,6 +154,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"sweeps_per_solve", r.solves.sweeps_per_solve()},
                        {"sweeps_max", r.solves.max_sweeps},
                        {"wall_seconds", r.wall_seconds},
+                       {"restarted_at", r.restarted_at},
                        {"setup_seconds", r.setup_seconds},
                        {"energy", energy},
                        {"per_step", steps},

@@ -73,6 +73,9 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     request_stop(0);
     const Checkpoint ck = read_checkpoint(parts, b1(parts, c.settings));
     CHECK(ck.step == c.stop_at);
+    // The stopped run's report counts the steps its files hold: history.csv's rows after t = 0.
+    CHECK_THAT(text(parts + "/report.txt"), Catch::Contains("accepted steps          " + std::to_string(c.stop_at) + " ("));
+    CHECK(lines(parts + "/history.csv") == std::size_t(c.stop_at) + 2);
     CHECK(ck.state.t < 10.0);
     const RunResult restarted = run(b1(parts, c.settings), true);
 
@@ -110,6 +113,9 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     for (const char* frame : {"0000", "0001", "0002", "0003"})
       CHECK((fs::exists(parts + "/mesh_" + frame + ".vtu") && fs::exists(parts + "/interface_" + frame + ".vtp")));
     CHECK(!fs::exists(parts + "/mesh_" + std::string("0004.vtu")));
+    CHECK_THAT(text(parts + "/report.txt"), Catch::Contains(" s) since the restart at t = "));
+    CHECK(restarted.restarted_at == ck.state.t);
+    CHECK(reference.restarted_at == -1);
     // A restart of the finished run is refused, its files untouched.
     const std::string report = text(parts + "/report.txt");
     CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains("checkpoint.txt: the run reached time.T = ") && Catch::Contains(" s: there is nothing to go on with"));

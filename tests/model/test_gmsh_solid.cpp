@@ -143,8 +143,8 @@ Mesh extrude(const Mesh& plane, double depth) {
 
 /// The corner peel's plate (n x 1 x n H8) turned by Q about the origin: its body "plate",
 /// its face "bottom", its corner "top_left_back".
-std::string turned_plate(int n, const Eigen::Matrix3d& Q) {
-  return write_msh("turned_plate.msh", {{plate_box(n), Eigen::Vector3d::Zero(), "plate", {{"bottom", "bottom"}}, {{"top_left_back", "top_left_back"}}}}, Q);
+std::string turned_plate(int n, const Eigen::Matrix3d& Q, const std::string& name = "turned_plate.msh") {
+  return write_msh(name, {{plate_box(n), Eigen::Vector3d::Zero(), "plate", {{"bottom", "bottom"}}, {{"top_left_back", "top_left_back"}}}}, Q);
 }
 
 /// The corner peel `a_cfg` and its placed twin `b_cfg` (the base's normal `n`, the loads turned
@@ -423,7 +423,7 @@ TEST_CASE("3D placement: mesh.origin and mesh.rotation move the built-in box and
   placement << std::setprecision(17) << "origin = [" << o.x() << ", " << o.y() << ", " << o.z()
             << "]; rotation = { axis = [1.0, 2.0, 3.0]; angle = " << 0.7 * 180 / M_PI << "; };";
   const std::string source = box ? "size = [4.0, 1.0, 4.0]; nx = 4; ny = 1; nz = 4; element = \"H8\";"
-                                 : "file = \"" + turned_plate(4, Eigen::Matrix3d::Identity()) + "\";";
+                                 : "file = \"" + turned_plate(4, Eigen::Matrix3d::Identity(), "placed_plate.msh") + "\";";  // its own file: tests run side by side
   const Config a_cfg = test::corner_peel(4, pull.reference, "mesh = { " + source + " };");
   const Config b_cfg = test::corner_peel(4, pull.turned, "mesh = { " + source + " " + placement.str() + " };");
   const Model mb = test::make_model(b_cfg);

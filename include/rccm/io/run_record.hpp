@@ -45,7 +45,8 @@ struct RunResult {
   std::string linear_solver;             // who solved the body's K0: "CHOLMOD", "PETSc MUMPS on 2 processes"
   std::vector<std::string> bodies;       // the mesh's bodies
   std::vector<int> pairs_per_interface;  // contact pairs of each config interface
-  double setup_seconds = 0, wall_seconds = 0;
+  double setup_seconds = 0, wall_seconds = 0;  // of this process: a restart's since it restarted
+  double restarted_at = -1;                     // the checkpoint's time a restart went on from; -1: none
 };
 
 }  // namespace rccm
