@@ -79,6 +79,18 @@ void split_sweep_settings(const std::vector<std::string>& items, std::vector<Swe
     else
       fixed.push_back(item);
   }
+  // A setting given twice would be one case's value and another's silently, a value listed
+  // twice two cases into one directory.
+  std::vector<std::string> paths;
+  for (const std::string& item : fixed) paths.push_back(item.substr(0, item.find('=')));
+  for (const SweepAxis& a : axes) {
+    if (std::find(paths.begin(), paths.end(), a.path) != paths.end())
+      throw InputError("sweep: --set " + a.path + " is given more than once: give each setting once (a list sweeps it)");
+    paths.push_back(a.path);
+    for (std::size_t k = 0; k < a.values.size(); ++k)
+      if (std::find(a.values.begin(), a.values.begin() + k, a.values[k]) != a.values.begin() + k)
+        throw InputError("sweep: --set " + a.path + " lists " + a.values[k] + " twice: give each value once");
+  }
 }
 
 std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const std::vector<std::string>& fixed,
