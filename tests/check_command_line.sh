@@ -11,7 +11,8 @@
 #     case starts, summary.csv says which cases did not run;
 #     the same sweep again is refused, its summary untouched, the interrupted case's restart
 #     suggested; a sweep's overlay command names its own cases;
-#  7. a second SIGINT exits at once.
+#  7. a second SIGINT exits at once;
+#  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it.
 set -u
 rccm=$1; src=$2
 work=$(mktemp -d); trap 'umount "$work/full" 2>/dev/null; rm -rf "$work"' EXIT
@@ -135,6 +136,17 @@ pid=$!
 for _ in $(seq 200); do [ -s "$out/history.csv" ] && break; sleep 0.1; done
 kill -s INT "$pid"; kill -s INT "$pid"; wait "$pid"; rc=$?
 check; [ "$rc" -eq 130 ] || fail "second SIGINT: exit $rc, want 130"
+
+# 8. A signal during a run's set-up (B1 refined 64 times: its set-up takes minutes) ends it at
+# once, writing nothing; gmsh meshing in its own process (a fine disc peel) ends with it.
+start=$(date +%s)
+timeout --preserve-status -s INT 2 "$rccm" run "$b1" -q --set mesh.nx=2048 --set mesh.ny=128 -o "$work/setup" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 130 ] && grep -q "rccm: stopped by signal 2 during set-up; nothing was written" "$work/err" && [ ! -e "$work/setup" ] \
+  && [ $(( $(date +%s) - start )) -lt 30 ] || fail "SIGINT in set-up: exit $rc after $(( $(date +%s) - start )) s, $(cat "$work/err")"
+timeout --preserve-status -s TERM 2 "$rccm" run "$src/config/disc-peel.cfg" -q --set mesh.parameters.h=0.1237 -o "$work/mesh" >/dev/null 2>"$work/err"; rc=$?
+sleep 0.5
+check; [ "$rc" -eq 143 ] && [ ! -e "$work/mesh" ] && ! pgrep -f "mesh.parameters.h=0.1237" >/dev/null \
+  || fail "SIGTERM while gmsh meshes: exit $rc, $(pgrep -fa "mesh.parameters.h=0.1237") $(cat "$work/err")"
 
 echo "$((checks - failed)) passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -208,6 +208,7 @@ int main(int argc, char** argv) {
       options.force = force;
       options.restart = !restart_dir.empty();
       rccm::install_stop_handlers();
+      rccm::exit_at_once_until_writing();
       const rccm::RunResult r = rccm::Simulation(cfg, options).run();
       if (!root) return 0;
       print_totals(r);
