@@ -56,6 +56,13 @@ grep -q "^warning: .*start bonded across a gap" "$work/gap/report.txt" || fail "
 # ... before the first step: a run that then fails (here: three steps allowed) has said it too.
 check; "$rccm" run "$b1" -q --set interface.g0=0.5 --set integrator.max_steps=3 -o "$work/gap3" >/dev/null 2>"$work/err"; rc=$?
 [ "$rc" -eq 3 ] && grep -q "rccm: note: .*start bonded across a gap" "$work/err" || fail "g0 = 0.5, 3 steps: exit $rc, no note on stderr ($(cat "$work/err"))"
+# A failed run restarts with what its message suggests changed (here: more steps), and ends
+# as the uninterrupted run of the same problem: the same accepted steps up to where it failed.
+"$rccm" run "$b1" -q --set interface.g0=0.5 --set integrator.max_steps=500000 -o "$work/gapT" >/dev/null 2>&1
+check; "$rccm" run "$b1" -q --set interface.g0=0.5 --set integrator.max_steps=500000 --restart "$work/gap3" >/dev/null 2>"$work/err"; rc=$?
+[ "$rc" -eq 0 ] && grep -q "^status: complete" "$work/gap3/report.txt" \
+  && [ "$(head -4 "$work/gap3/history.csv" | cut -d, -f1-2)" = "$(head -4 "$work/gapT/history.csv" | cut -d, -f1-2)" ] \
+  || fail "restart with integrator.max_steps raised: exit $rc, $(cat "$work/err")"
 
 # 2. alpha = 0.
 check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \

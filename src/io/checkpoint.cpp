@@ -14,7 +14,9 @@ namespace rccm {
 
 namespace {
 
-const char* const magic = "rccm-checkpoint-3";  // 2: no step records (history.csv holds them); 3: contact_nodes
+// 2: no step records (history.csv holds them); 3: contact_nodes; 4: the settings fingerprint
+// without the numerical controls (a failed run restarts with them changed)
+const char* const magic = "rccm-checkpoint-4";
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
 class RecordWriter {
