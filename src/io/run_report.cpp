@@ -106,7 +106,8 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   if (rate_independent)
     out << "  In the rate-independent limit beta jumps within a step where the interface snaps through: the\n"
            "  work released there is no dissipation of the law (alpha beta'^2 with alpha = 0) and no\n"
-           "  numerical error; it is what the balance leaves (docs/MODEL.md s3).\n";
+           "  numerical error; it is what the balance leaves (docs/MODEL.md s3). The normal contact work,\n"
+           "  0 along an exact path, is there the trapezoid rule across the jump, not 0 either.\n";
   else if (e.relative_error() > 1e-2)
     out << "  The imbalance is large: beta fell by a large amount within single steps (a time step too\n"
            "  coarse for the debonding); refine the steps or tighten integrator.rtol.\n";
