@@ -45,6 +45,11 @@ check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare pat
 check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/dash-o" >/dev/null 2>"$work/err" || fail "-o DIR: $(cat "$work/err")"
 [ -s "$work/dash-o/report.txt" ] || fail "-o DIR: no report there"
 
+# Options out of range say their range in words a user reads (not 1.8e308 written out).
+for args in "sweep $b1 --set interface.alpha=1,2 -j 0" "compare $b1 --euler-steps 0" "bench --scale-time 0"; do
+  check; "$rccm" $args >/dev/null 2>"$work/err"; rc=$?
+  [ "$rc" -eq 2 ] && [ "$(head -1 "$work/err" | wc -c)" -lt 80 ] || fail "$args: exit $rc, $(head -c 300 "$work/err")"
+done
 check; "$rccm" run "$src/config" >/dev/null 2>"$work/err"; rc=$?
 [ "$rc" -eq 2 ] && grep -q "config: a directory, not a config file" "$work/err" || fail "run DIR: exit $rc, $(cat "$work/err")"
 check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rccm --version: $("$rccm" --version)"

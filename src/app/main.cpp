@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
       "sweep", "run a config for every value of listed settings (--set interface.alpha=0,0.1,1,10), in parallel");
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   sweep_app->add_option("--jobs,-j", jobs, "cases run at once (default: the machine's cores)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 1024));
   sweep_app->add_option("--output,-o", output_dir,
                         "directory of the cases and the summary (default: <output.directory>-sweep)");
   run->add_option("--output,-o", output_dir, "output directory (instead of output.directory)");
@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
   bench->add_option("--scale3d", scale3d_levels, "the 3D corner peel on 8, 12, 16, 24, 32, 45, 64 cells a side: the first N")
       ->check(CLI::Range(0, 7));
   bench->add_option("--scale-time", scale_time, "simulated time of each scale case, s (default 1)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Validator([](const std::string& v) { return std::strtod(v.c_str(), nullptr) > 0 ? "" : "must be > 0 (got " + v + ")"; }, "> 0"));
   std::string bench_linear = "auto";
   const std::map<std::string, rccm::LinearSolver> linear_solvers{{"auto", rccm::LinearSolver::Auto},
                                                                   {"cholmod", rccm::LinearSolver::Cholmod},
@@ -138,7 +138,7 @@ int main(int argc, char** argv) {
   compare->add_option("--solvers", solvers, "comma-separated: bipotential, rccm, newton (default: solver.method)")
       ->delimiter(',');
   compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::Range(1, 100000000));
 
   try {
     app.parse(argc, argv);
