@@ -21,6 +21,9 @@ TEST_CASE("compare: each integrator with each solver, the solvers agree on beta"
   CHECK(cases[1].config.solver.method == ContactMethod::Newton);
   // The same integrator: Euler's same steps give beta to the solvers' tolerance; ARKODE
   // chooses its steps from the solves, and agrees to its own tolerance.
+  std::ostringstream table;
+  print_comparison(table, cases);
+  CHECK_THAT(table.str(), Catch::Contains("total CPU newton / bipotential: ") && !Catch::Contains("the paper: 161.7 s"));
   for (auto [k, tolerance] : {std::pair{0, 1e-4}, std::pair{2, 1e-8}}) {
     const Eigen::VectorXd &a = cases[k].result.snapshots.back().beta, &b = cases[k + 1].result.snapshots.back().beta;
     CHECK(a.minCoeff() < 0.5);  // debonding under way at T
