@@ -81,6 +81,9 @@ refused() {  # the arguments of tools/plot
 refused --overlay "$work/none" "$sweep/summary.csv" "$work/empty" "$work/stopped"
 refused --overlay "$work/none"
 [ -e "$work/none/overlay.png" ] && fail "overlay.png written with nothing to draw" || pass
+# OUT_DIR forgotten: the first run is not taken for it (overlay.png written into a run).
+refused --overlay "${cases[0]}" "${cases[@]}"
+[ -e "${cases[0]}/overlay.png" ] && fail "overlay.png written into a run's directory" || pass
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
