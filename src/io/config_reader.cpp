@@ -754,7 +754,9 @@ OutputParams read_output(const Reader& r, const Setting& root, double T, int dim
   if (O.directory.empty()) r.fail((*o)["directory"], "must not be empty");
   if (o->exists("times")) {
     O.times = r.numbers((*o)["times"]);
-    for (double tt : O.times) r.check(tt >= 0 && tt <= T, (*o)["times"], "must be in [0, time.T]", tt);
+    std::ostringstream range;  // T as read: it may come from a --set far from this line
+    range << "must be in [0, time.T = " << T << "]";
+    for (double tt : O.times) r.check(tt >= 0 && tt <= T, (*o)["times"], range.str(), tt);
     std::sort(O.times.begin(), O.times.end());
   }
   std::vector<std::string> names;  // watch points and probes name columns: one name once
