@@ -155,10 +155,18 @@ start=$(date +%s)
 timeout --preserve-status -s INT 2 "$rccm" run "$b1" -q --set mesh.nx=2048 --set mesh.ny=128 -o "$work/setup" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 130 ] && grep -q "rccm: stopped by signal 2 during set-up; nothing was written" "$work/err" && [ ! -e "$work/setup" ] \
   && [ $(( $(date +%s) - start )) -lt 30 ] || fail "SIGINT in set-up: exit $rc after $(( $(date +%s) - start )) s, $(cat "$work/err")"
-timeout --preserve-status -s TERM 2 "$rccm" run "$src/config/disc-peel.cfg" -q --set mesh.parameters.h=0.1237 -o "$work/mesh" >/dev/null 2>"$work/err"; rc=$?
+# SIGTERM to rccm alone (not its process group), once gmsh's process meshes: it ends with rccm.
+"$rccm" run "$src/config/disc-peel.cfg" -q --set mesh.parameters.h=0.1237 -o "$work/mesh" >/dev/null 2>"$work/err" &
+pid=$!; gmsh_pid=
+for _ in $(seq 100); do gmsh_pid=$(pgrep -P "$pid" | head -1); [ -n "$gmsh_pid" ] && break; sleep 0.05; done
+# the first child reads the file's dimension and ends at once: wait for the one that meshes
+sleep 0.5; gmsh_pid=$(pgrep -P "$pid" | head -1)
+kill -s TERM "$pid"; wait "$pid"; rc=$?
 sleep 0.5
-check; [ "$rc" -eq 143 ] && [ ! -e "$work/mesh" ] && ! pgrep -f "mesh.parameters.h=0.1237" >/dev/null \
-  || fail "SIGTERM while gmsh meshes: exit $rc, $(pgrep -fa "mesh.parameters.h=0.1237") $(cat "$work/err")"
+alive=$(ps -o stat= -p "$gmsh_pid" 2>/dev/null | grep -v Z)  # a zombie waits for init to reap it: ended
+check; [ "$rc" -eq 143 ] && [ -n "$gmsh_pid" ] && [ ! -e "$work/mesh" ] && [ -z "$alive" ] \
+  || fail "SIGTERM while gmsh meshes: exit $rc, gmsh's process '$gmsh_pid' $(ps -o pid,stat,cmd -p "$gmsh_pid" | tail -1) $(cat "$work/err")"
+[ -n "$gmsh_pid" ] && kill -9 "$gmsh_pid" 2>/dev/null
 
 echo "$((checks - failed)) passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -16,8 +16,8 @@ RunResult Simulation::run() {
   writing_started();                                  // a signal from now on stops at an accepted step
   recorder.open(model);                               // result files, only now that the input is known good
   BetaOde ode(model, make_contact_solver(cfg_.solver), [&](const AcceptedStep& a) {
-    recorder.step(a);  // energy, files, logs, checkpoints
-    throw_if_stop_requested(a.step, a.t);
+    recorder.step(a);                                 // energy, files, logs, checkpoints
+    if (a.step > 0) throw_if_stop_requested(a.step, a.t);  // step 0 is recorded before the integrator exists
   });
   if (cfg_.integrator.method == Method::Arkode)  // the energy terms to the order of the scheme
     ode.track_midpoints(make_contact_solver(cfg_.solver));

@@ -72,12 +72,12 @@ std::string Config::fingerprint() const {
     h.list("loads.t", l.amplitude.t).list("loads.v", l.amplitude.v);
   }
   h("time.T", time.T)("time.steps", time.steps);
-  // Left out: the numerical controls a failure message asks to change (solver.method, tolerance,
-  // max_iterations, anderson; integrator.rtol, atol, min_step, max_step, max_steps and the
-  // fixed point's), so that a failed run restarts with them changed (README "When a run fails").
-  h("solver.over_relaxation", solver.over_relaxation);
-  h("solver.local_iterations", solver.local_iterations)("solver.form", double(solver.form));
-  h("solver.rho", double(solver.rho))("solver.relaxation", solver.relaxation)("solver.active_set", solver.active_set);
+  // Left out: the numerical controls a failure message asks to change (solver.method, form,
+  // relaxation, over_relaxation, tolerance, max_iterations, anderson; integrator.rtol, atol,
+  // min_step, max_step, max_steps and the fixed point's), so that a failed run restarts with
+  // them changed (README "When a run fails").
+  h("solver.local_iterations", solver.local_iterations);
+  h("solver.rho", double(solver.rho))("solver.active_set", solver.active_set);
   h("solver.active_set_max_nodes", solver.active_set_max_nodes)("solver.compressed_min_nodes", solver.compressed_min_nodes);
   // solver.linear is left out: the body's solver changes the results by round-off only, and a
   // run interrupted in one process may go on under mpirun.

@@ -19,33 +19,44 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <sys/resource.h>
 #include <type_traits>
+#include <unistd.h>
 
 namespace rccm {
 
 namespace {
 
-/// gmsh's library state for one read, in the child process that reads (in_gmsh_process):
-/// initialized without reading the user's gmshrc, silent, its messages collected;
-/// finalized on every way out.
-class GmshSession {
- public:
-  GmshSession() {
-    gmsh::initialize(0, nullptr, false);
-    gmsh::option::setNumber("General.Terminal", 0);
-    gmsh::logger::start();
-  }
-  ~GmshSession() { gmsh::finalize(); }
-  GmshSession(const GmshSession&) = delete;
-  GmshSession& operator=(const GmshSession&) = delete;
+/// gmsh for one read, in the child process that reads (in_gmsh_process): initialized
+/// without the user's gmshrc, silent, its messages collected; never finalized (the child
+/// ends: freeing a large model would only delay the answer).
+void start_gmsh() {
+  gmsh::initialize(0, nullptr, false);
+  gmsh::option::setNumber("General.Terminal", 0);
+  gmsh::logger::start();
+}
 
-  /// gmsh's last error message, or the exception's text.
-  static std::string last_error(const std::string& fallback) {
-    std::string e;
-    gmsh::logger::getLastError(e);
-    return e.empty() ? fallback : e;
+/// gmsh's last error message, or the exception's text.
+std::string last_gmsh_error(const std::string& fallback) {
+  std::string e;
+  gmsh::logger::getLastError(e);
+  return e.empty() ? fallback : e;
+}
+
+/// The child's address space limited to what it has and what the machine can give: a mesh
+/// larger than the memory ends in bad_alloc at once, not in minutes of swapping.
+void limit_memory() {
+  long pages = 0;
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r")) {
+    if (std::fscanf(statm, "%ld", &pages) != 1) pages = 0;
+    std::fclose(statm);
   }
-};
+  const double bytes = double(pages) * double(::sysconf(_SC_PAGESIZE)) + available_memory();
+  if (bytes < 1e18) {
+    const rlimit limit{rlim_t(bytes), rlim_t(bytes)};
+    ::setrlimit(RLIMIT_AS, &limit);
+  }
+}
 
 const char* group_kind(int dim) { return dim == 0 ? "point" : dim == 1 ? "curve" : dim == 2 ? "surface" : "volume"; }
 
@@ -122,11 +133,11 @@ class Reader {
         gmsh::model::mesh::generate(m_.dim);
       }
     } catch (const std::string& e) {
-      fail(GmshSession::last_error(e));
+      fail(last_gmsh_error(e));
     } catch (const InputError&) {
       throw;  // ours, already placed
     } catch (const std::exception& e) {
-      fail(GmshSession::last_error(e.what()));
+      fail(last_gmsh_error(e.what()));
     }
   }
 
@@ -490,7 +501,7 @@ std::string crash_message(int signal) {
   return std::string("gmsh stopped abnormally while reading or meshing the file (") +
          (signal ? "signal " + std::to_string(signal) + ", " + strsignal(signal) : std::string("no answer")) +
          "): gmsh 4.8 aborts on errors it cannot report, most often a mesh size of 0 or below on a Point or from a "
-         "Field; check the file's mesh sizes (opening it in gmsh shows its own messages)";
+         "Field, or a mesh larger than the memory; check the file's mesh sizes (opening it in gmsh shows its own messages)";
 }
 
 /// Runs `read` (every call to gmsh) in a child process (child_process.hpp): an error gmsh
@@ -498,17 +509,26 @@ std::string crash_message(int signal) {
 /// Returns what `read` returned; throws InputError "<where>..." on any error.
 std::string in_gmsh_process(const std::string& where, const std::function<std::string()>& read) {
   const ChildOutcome out = run_in_child([&]() -> std::string {
-    GmshSession session;
+    limit_memory();
+    start_gmsh();
     try {
       return "M" + read();
     } catch (const InputError& e) {
       return "E" + std::string(e.what());
     } catch (const std::string& e) {  // gmsh reports its errors as strings
-      return "E" + where + GmshSession::last_error(e);
+      return "E" + where + last_gmsh_error(e);
+    } catch (const std::bad_alloc&) {
+      std::ostringstream m;
+      m << std::setprecision(3) << "meshing it needs more memory than the machine has (" << available_memory() / 1e9
+        << " GB available): use coarser mesh sizes (the file's parameters) or fewer refinements";
+      return "E" + where + m.str();
     } catch (const std::exception& e) {
-      return "E" + where + GmshSession::last_error(e.what());
+      return "E" + where + last_gmsh_error(e.what());
     }
   });
+  // Ctrl-C or SIGTERM to the process group ends gmsh's process too: the run was stopped.
+  if (out.signal == SIGINT || out.signal == SIGTERM)
+    throw Interrupted("stopped by signal " + std::to_string(out.signal) + " while gmsh read " + where.substr(0, where.size() - 2), out.signal);
   if (!out.finished || out.bytes.empty()) throw InputError(where + crash_message(out.signal));
   if (out.bytes[0] == 'E') throw InputError(out.bytes.substr(1));
   return out.bytes.substr(1);

@@ -48,10 +48,7 @@ void remove_plots(const fs::path& plots) {
 /// Whether `dir` holds a run that stopped before T with a checkpoint (its report not complete).
 bool stopped(const fs::path& dir) {
   std::error_code ec;
-  std::ifstream report(dir / "report.txt");
-  for (std::string line; std::getline(report, line);)
-    if (line.rfind("status: complete", 0) == 0) return false;
-  return fs::exists(dir / "checkpoint.txt", ec);
+  return !holds_complete_run(dir.string()) && fs::exists(dir / "checkpoint.txt", ec);
 }
 
 /// Whether a file can be created in `dir` (a probe created and removed at once: permissions,
@@ -65,6 +62,13 @@ bool writable(const fs::path& dir) {
   return true;
 }
 }  // namespace
+
+bool holds_complete_run(const std::string& directory) {
+  std::ifstream report(fs::path(directory) / "report.txt");
+  for (std::string line; std::getline(report, line);)
+    if (line.rfind("status: complete", 0) == 0) return true;
+  return false;
+}
 
 void check_output_directory(const Config& cfg, bool force) {
   const fs::path dir = cfg.output.directory;

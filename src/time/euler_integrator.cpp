@@ -51,9 +51,9 @@ std::vector<std::string> EulerIntegrator::warnings() const {
       << " (above 1 a step passes beta = 0; stable below 2)";
   if (clamped_ > 0) m << (unstable ? " and" : ";") << " beta was clamped to 0 at " << clamped_ << " node-steps";
   m << "; beta is not time-accurate. Use integrator.method = \"arkode\" (its steps follow this ratio)";
-  if (unstable)
-    m << ", or at least " << static_cast<long>(std::ceil(ode_.steps() * max_ratio_ / 2))
-      << " steps (time.steps; rccm compare: --euler-steps); the ratio grows as nodes open, so more may be needed";
+  if (unstable)  // ratio < 1 neither oscillates nor overshoots; a lower bound: the ratio grows as nodes open
+    m << ", or more than " << static_cast<long>(std::ceil(ode_.steps() * max_ratio_))
+      << " steps (time.steps; rccm compare: --euler-steps), a lower bound: the ratio grows as nodes open";
   return {m.str()};
 }
 

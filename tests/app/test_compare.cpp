@@ -31,6 +31,14 @@ TEST_CASE("compare: each integrator with each solver, the solvers agree on beta"
   }
 }
 
+TEST_CASE("compare: the classical RCCM algorithm against the bipotential, beside the paper's ratios", "[compare]") {
+  const Config cfg = load_config(test::shipped("b1.cfg"), {"time.T=2.0", "output.times=[1.0]"});
+  const std::vector<CompareCase> cases = run_comparison(cfg, {"euler"}, {"bipotential", "rccm"}, 60);
+  std::ostringstream table;
+  print_comparison(table, cases);
+  CHECK_THAT(table.str(), Catch::Contains("total CPU rccm / bipotential: ") && Catch::Contains("(the paper: 161.7 s / 66.8 s = 2.4 on B1"));
+}
+
 TEST_CASE("compare: alpha = 0 runs the rate-independent limit once per solver, as rccm run does", "[compare]") {
   const Config cfg = load_config(test::shipped("b1.cfg"), {"interface.alpha=0"});
   REQUIRE(cfg.integrator.method == Method::RateIndependent);

@@ -121,9 +121,24 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains("checkpoint.txt: the run reached time.T = ") && Catch::Contains(" s: there is nothing to go on with"));
     CHECK(text(parts + "/report.txt") == report);
     CHECK(fs::exists(parts + "/mesh_0003.vtu"));
+    // A run cut off after its checkpoint at T, before its report (kill -9): the restart ends it.
+    fs::remove(parts + "/report.txt");
+    fs::remove(parts + "/report.json");
+    CHECK(run(b1(parts, c.settings), true).snapshots.size() == reference.snapshots.size());
+    CHECK_THAT(text(parts + "/report.txt"), Catch::Contains("status: complete"));
     fs::remove_all(whole);
     fs::remove_all(parts);
   }
+}
+
+TEST_CASE("a stop asked while the run records its step 0 ends it at step 1 with its report and checkpoint", "[restart]") {
+  const std::string dir = fs::temp_directory_path() / "rccm_stop_at_0";
+  request_stop(0);
+  CHECK_THROWS_AS(run(b1(dir, {"integrator.method=\"euler\"", "time.steps=300"}), false, 0), Interrupted);
+  request_stop(0);
+  CHECK_THAT(text(dir + "/report.txt"), Catch::Contains("status: STOPPED"));
+  CHECK(read_checkpoint(dir, b1(dir, {"integrator.method=\"euler\"", "time.steps=300"})).step == 1);
+  fs::remove_all(dir);
 }
 
 TEST_CASE("a restart from a checkpoint whose pairs are other mesh nodes is refused, the files untouched", "[restart]") {
@@ -335,7 +350,7 @@ output = { directory = "b"; checkpoint_steps = 7; };
         "interface.w=0.02", "interface.alpha=2.0", "interface.mu=0.2", "interface.beta0=0.9", "interface.g0=0.1",
         "loads.[0].value=0.2", "loads.[0].component=x", "loads.[0].node_set=top_right",
         "loads.[0].type=force", "time.T=2.0", "time.steps=100",
-        "solver.local_iterations=9", "solver.form=jacobi", "solver.rho=paper", "solver.relaxation=0.5",
+        "solver.local_iterations=9", "solver.rho=paper",
         "solver.active_set=false", "solver.active_set_max_nodes=7", "integrator.method=euler", "integrator.scheme=erk",
         "integrator.table=ARKODE_SDIRK_5_3_4", "integrator.initial_step=0.01", "integrator.fixed_step=0.01",
         "output.times=[0.5]", "output.watch=({name=\"B\";point=[0.0,0.0];})",
@@ -346,7 +361,7 @@ output = { directory = "b"; checkpoint_steps = 7; };
   // The numerical controls a failure message asks to change do not: a failed run restarts
   // with them changed.
   for (const char* control :
-       {"solver.method=newton", "solver.tolerance=1e-9", "solver.max_iterations=99", "solver.anderson=2",
+       {"solver.method=newton", "solver.form=jacobi", "solver.relaxation=0.5", "solver.over_relaxation=1.5", "solver.tolerance=1e-9", "solver.max_iterations=99", "solver.anderson=2",
         "integrator.rtol=1e-7", "integrator.atol=1e-9", "integrator.max_step=0.1", "integrator.min_step=1e-6",
         "integrator.max_steps=99", "integrator.fixed_point_tolerance=1e-9", "integrator.fixed_point_iterations=9"}) {
     INFO(control);

@@ -185,11 +185,12 @@ struct Config {
 
   std::string file;                  // path it was read from
   std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
-  /// Fingerprint of every parsed value that shapes the results (all but output.directory and
-  /// output.checkpoint_steps; fingerprint()): a checkpoint restarts only a run of the same
-  /// settings, however they are written (order, 69000 or 6.9e4, line ends, defaults spelled out).
+  /// Fingerprint of every parsed value that defines the problem and its time grid (all but
+  /// output.directory, checkpoint_steps, every, and the numerical controls a failure message
+  /// asks to change; fingerprint()): a checkpoint restarts only a run of the same settings,
+  /// however they are written (order, 69000 or 6.9e4, line ends, defaults spelled out).
   std::string settings;
-  std::string fingerprint() const;  // every field of every section below: a new field goes in there
+  std::string fingerprint() const;  // a new field goes in there unless it is such a control
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
   /// the wrong length once the mesh is known, an unwritable directory).

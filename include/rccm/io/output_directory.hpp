@@ -8,6 +8,9 @@
 
 namespace rccm {
 
+/// Whether `directory` holds a run that reached T (its report.txt says `status: complete`).
+bool holds_complete_run(const std::string& directory);
+
 /// Throws InputError "file:line: output.directory: ..." when the directory cannot be created
 /// or written, or already holds the results of a run and `force` is false. Creates nothing.
 void check_output_directory(const Config& cfg, bool force);
