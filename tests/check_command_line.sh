@@ -152,7 +152,7 @@ check; [ "$rc" -eq 130 ] || fail "second SIGINT: exit $rc, want 130"
 # 8. A signal during a run's set-up (B1 refined 64 times: its set-up takes minutes) ends it at
 # once, writing nothing; gmsh meshing in its own process (a fine disc peel) ends with it.
 start=$(date +%s)
-timeout --preserve-status -s INT 2 "$rccm" run "$b1" -q --set mesh.nx=2048 --set mesh.ny=128 -o "$work/setup" >/dev/null 2>"$work/err"; rc=$?
+timeout --preserve-status -k 15 -s INT 2 "$rccm" run "$b1" -q --set mesh.nx=2048 --set mesh.ny=128 -o "$work/setup" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 130 ] && grep -q "rccm: stopped by signal 2 during set-up; nothing was written" "$work/err" && [ ! -e "$work/setup" ] \
   && [ $(( $(date +%s) - start )) -lt 30 ] || fail "SIGINT in set-up: exit $rc after $(( $(date +%s) - start )) s, $(cat "$work/err")"
 # SIGTERM to rccm alone (not its process group), once gmsh's process meshes: it ends with rccm.
@@ -161,7 +161,10 @@ pid=$!; gmsh_pid=
 for _ in $(seq 100); do gmsh_pid=$(pgrep -P "$pid" | head -1); [ -n "$gmsh_pid" ] && break; sleep 0.05; done
 # the first child reads the file's dimension and ends at once: wait for the one that meshes
 sleep 0.5; gmsh_pid=$(pgrep -P "$pid" | head -1)
-kill -s TERM "$pid"; wait "$pid"; rc=$?
+kill -s TERM "$pid"
+for _ in $(seq 150); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done  # not the whole set-up's minutes
+kill -0 "$pid" 2>/dev/null && kill -9 "$pid"
+wait "$pid"; rc=$?
 sleep 0.5
 alive=$(ps -o stat= -p "$gmsh_pid" 2>/dev/null | grep -v Z)  # a zombie waits for init to reap it: ended
 check; [ "$rc" -eq 143 ] && [ -n "$gmsh_pid" ] && [ ! -e "$work/mesh" ] && [ -z "$alive" ] \
