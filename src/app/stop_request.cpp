@@ -2,11 +2,11 @@
 
 #include "rccm/base/errors.hpp"
 
+#include <atomic>
 #include <csignal>
 #include <cstdlib>
 #include <string>
 #include <unistd.h>
-#include <utility>
 
 namespace rccm {
 
@@ -14,25 +14,35 @@ namespace {
 volatile std::sig_atomic_t requested = 0;
 volatile std::sig_atomic_t at_once = 0;  // a run's set-up: nothing written yet
 
-/// "rccm: stopped by signal N during set-up; nothing was written" with write(2), which a
-/// signal handler may call.
+std::atomic_flag exiting = ATOMIC_FLAG_INIT;  // lock-free: a signal handler may use it
+
+/// "rccm: stopped by signal N during set-up; nothing was written" in one write(2), which a
+/// signal handler may call (one call: the message is never interleaved with another).
 void say_stopped_in_setup(int signal) {
   const char head[] = "\nrccm: stopped by signal ", tail[] = " during set-up; nothing was written\n";
-  char digits[4];
-  int n = 0;
+  char message[sizeof head + 3 + sizeof tail];
+  std::size_t n = 0;
+  for (const char c : head)
+    if (c != '\0') message[n++] = c;
   for (int d = 100; d > 0; d /= 10)
-    if (signal >= d || d == 1) digits[n++] = static_cast<char>('0' + signal / d % 10);
-  for (const auto& [text, size] : {std::pair<const char*, std::size_t>{head, sizeof head - 1}, {digits, std::size_t(n)},
-                                   {tail, sizeof tail - 1}})
-    if (::write(STDERR_FILENO, text, size) < 0) return;
+    if (signal >= d || d == 1) message[n++] = static_cast<char>('0' + signal / d % 10);
+  for (const char c : tail)
+    if (c != '\0') message[n++] = c;
+  if (::write(STDERR_FILENO, message, n) < 0) return;
 }
 
 // The first signal asks the run to stop at its next accepted step; a second one (Ctrl-C
 // again) exits at once: the CSV lines and renamed files are complete, a file being written
 // under a temporary name is left behind as such. During a run's set-up the first one does.
+// A signal sent both to the process and to its group (timeout(1) does) can run this handler
+// in two threads at once: the first to exit does, the other waits for the exit.
 extern "C" void on_signal(int signal) {
-  if (at_once) say_stopped_in_setup(signal);
-  if (requested || at_once) std::_Exit(128 + signal);
+  if (requested || at_once) {
+    if (exiting.test_and_set())
+      for (;;) ::pause();
+    if (at_once) say_stopped_in_setup(signal);
+    std::_Exit(128 + signal);
+  }
   requested = signal;
 }
 }  // namespace
