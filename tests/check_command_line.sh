@@ -10,7 +10,8 @@
 #  6. SIGINT during a sweep: exit 130, the running case stops at an accepted step, no other
 #     case starts, summary.csv says which cases did not run;
 #     the same sweep again is refused, its summary untouched, the interrupted case's restart
-#     suggested; a sweep's overlay command names its own cases;
+#     suggested; the command the stopped sweep printed goes on with it (sweep --restart); a
+#     sweep's overlay command names its own cases;
 #  7. a second SIGINT exits at once;
 #  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it.
 set -u
@@ -134,6 +135,13 @@ cp "$out/summary.csv" "$work/summary.before"
 check; [ "$rc" -eq 2 ] && grep -q "sweep: case alpha=1: .*already holds the results of a run (history.csv); give --restart $out/alpha=1 to go on with it" "$work/err" \
   || fail "sweep again: exit $rc, $(cat "$work/err")"
 cmp -s "$out/summary.csv" "$work/summary.before" || fail "sweep again: summary.csv changed"
+grep -q -- "(--restart $out goes on with the sweep" "$work/err" || fail "sweep again: no --restart of the sweep suggested: $(cat "$work/err")"
+# ... and the command the stopped sweep printed goes on with it: the interrupted case from its
+# checkpoint, the others run, every row complete.
+resume=$(sed -n 's/^rccm: sweep stopped by a signal.*; to go on: //p' "$work/sweep.out")
+eval "$resume" >"$work/resume.out" 2>&1; rc=$?
+check; [ "$rc" -eq 0 ] && grep -q "^# alpha=1: goes on from its checkpoint at t = " "$work/resume.out" \
+  && [ "$(grep -c ',complete,' "$out/summary.csv")" = 3 ] || fail "sweep --restart: exit $rc, command '$resume', $(cat "$work/resume.out")"
 # A finished run's directory suggests no restart; a sweep's overlay command names its own cases.
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.alpha=1,2 -o "$work/sw2" >"$work/sw2.out" 2>&1 || fail "sweep sw2: $(cat "$work/sw2.out")"
 check; grep -q "plots: tools/plot --overlay '$work/sw2' '$work/sw2/alpha=1' '$work/sw2/alpha=2'$" "$work/sw2.out" || fail "sweep overlay command: $(tail -1 "$work/sw2.out")"

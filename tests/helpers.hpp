@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -94,6 +95,12 @@ inline std::vector<std::string> split_csv_line(const std::string& line) {
     else cells.back() += c;
   }
   return cells;
+}
+
+/// A file's whole text ("" if it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
 inline CsvTable read_csv(const std::string& path) {

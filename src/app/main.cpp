@@ -35,7 +35,7 @@ void print_totals(const rccm::RunResult& r) {
 
 /// `rccm sweep`: the cases, run in parallel; the exit status of the worst case.
 int sweep(const std::string& config_file, const std::vector<std::string>& overrides, std::string directory, int jobs,
-          bool force, const char* rccm_path) {
+          bool force, bool resume, const char* rccm_path) {
   std::vector<rccm::SweepAxis> axes;
   std::vector<std::string> fixed;
   rccm::split_sweep_settings(overrides, axes, fixed);
@@ -44,13 +44,18 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   const rccm::Config cfg = rccm::load_config(config_file, fixed);
   if (directory.empty()) directory = cfg.output.directory + "-sweep";
   std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, directory);
-  if (!force)  // as `rccm run`: a case's results are not overwritten, and nothing is written
+  if (resume && !std::filesystem::is_directory(directory))
+    throw rccm::InputError("sweep --restart " + directory + ": no such directory (the directory of the sweep to go on with)");
+  if (resume)  // each case as its directory says: kept, restarted or run
+    for (const std::string& note : rccm::plan_resumed_sweep(cases)) std::cout << "# " << note << "\n";
+  else if (!force)  // as `rccm run`: a case's results are not overwritten, and nothing is written
     for (const rccm::SweepCase& c : cases) {
       try {
         rccm::check_output_directory(c.config, false);
       } catch (const rccm::InputError& e) {
-        throw rccm::InputError("sweep: case " + c.name + ": " + e.what() +
-                               " (the case's command line is in jobs.txt; --force runs the whole sweep afresh)");
+        throw rccm::InputError("sweep: case " + c.name + ": " + e.what() + " (--restart " + directory +
+                               " goes on with the sweep: its complete cases kept, its stopped ones restarted; "
+                               "--force runs the whole sweep afresh)");
       }
     }
   for (const rccm::SweepCase& c : cases)  // PETSc is not thread-safe: its cases one at a time
@@ -67,7 +72,8 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   int status = 0;
   for (const rccm::SweepCase& c : cases) {
     if (c.status == rccm::CaseStatus::Interrupted || c.status == rccm::CaseStatus::NotRun) {
-      std::cerr << "rccm: sweep stopped by a signal; cases not run are marked 'not run' in summary.csv\n";
+      std::cerr << "rccm: sweep stopped by a signal; cases not run are marked 'not run' in summary.csv; to go on: "
+                << rccm::resume_command(rccm_path, config_file, overrides, directory) << "\n";
       return 128 + rccm::stop_signal();
     }
     if (c.status == rccm::CaseStatus::Failed) status = 3;
@@ -133,6 +139,10 @@ int main(int argc, char** argv) {
   CLI::Option* restart = run->add_option(
       "--restart", restart_dir, "go on from the checkpoint of an interrupted or failed run of the same config in DIR");
   restart->excludes("--force");
+  CLI::Option* sweep_restart = sweep_app->add_option(
+      "--restart", restart_dir,
+      "go on with the interrupted sweep in DIR (same config and --set): complete cases kept, stopped ones restarted");
+  sweep_restart->excludes("--force");
   compare->add_option("--integrators", integrators, "comma-separated: arkode, euler, rate-independent, contact-only")
       ->delimiter(',');
   compare->add_option("--solvers", solvers, "comma-separated: bipotential, rccm, newton (default: solver.method)")
@@ -188,14 +198,15 @@ int main(int argc, char** argv) {
       if (root && !bench_json.empty()) rccm::write_bench_json(bench_json, rows);
       return 0;
     }
-    if (*sweep_app) {
-      rccm::install_stop_handlers();
-      return sweep(config_file, overrides, output_dir, jobs, force, argv[0]);
-    }
-    if (restart->count() > 0 && restart_dir.empty())
+    if (restart->count() + sweep_restart->count() > 0 && restart_dir.empty())
       throw rccm::InputError("--restart: give the directory of the run to go on with, e.g. --restart results/b1");
     if (!restart_dir.empty() && !output_dir.empty() && restart_dir != output_dir)
       throw rccm::InputError("--restart " + restart_dir + " and -o " + output_dir + ": a restart writes where it started");
+    if (*sweep_app) {
+      rccm::install_stop_handlers();
+      return sweep(config_file, overrides, restart_dir.empty() ? output_dir : restart_dir, jobs, force,
+                   !restart_dir.empty(), argv[0]);
+    }
     // A restart writes where the run it continues wrote; -o is output.directory.
     if (!restart_dir.empty()) output_dir = restart_dir;
     if (!output_dir.empty()) overrides.push_back("output.directory=" + output_dir);

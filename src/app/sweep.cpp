@@ -3,13 +3,17 @@
 #include "rccm/app/stop_request.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/io/atomic_file.hpp"
+#include "rccm/io/checkpoint.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "rccm/io/csv.hpp"
+#include "rccm/io/output_directory.hpp"
+#include "rccm/io/run_report.hpp"
 
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <iterator>
 #include <optional>
 #include <ostream>
@@ -117,14 +121,41 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
   return cases;
 }
 
+std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
+  std::vector<std::string> notes;
+  for (SweepCase& c : cases) {
+    const std::string& dir = c.config.output.directory;
+    try {
+      if (holds_complete_run(dir)) {
+        c.result = read_report_json(dir, c.config);
+        c.start = CaseStart::Kept;
+        c.status = CaseStatus::Complete;
+        notes.push_back(c.name + ": complete, kept");
+      } else if (std::filesystem::exists(checkpoint_path(dir))) {
+        const Checkpoint checkpoint = read_checkpoint(dir, c.config);  // refused here if not this case's
+        c.start = CaseStart::Restart;
+        notes.push_back(c.name + ": goes on from its checkpoint at t = " + csv_number(checkpoint.state.t) + " s");
+      } else if (holds_results(dir)) {
+        c.start = CaseStart::Fresh;  // stopped before its first checkpoint: nothing to go on with
+        notes.push_back(c.name + ": stopped before its first checkpoint, runs afresh");
+      }
+    } catch (const InputError& e) {
+      throw InputError("sweep --restart: case " + c.name + ": " + e.what());
+    }
+  }
+  return notes;
+}
+
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
     for (std::size_t k = next++; k < cases.size() && !stop_signal(); k = next++) {
+      SweepCase& c = cases[k];
+      if (c.start == CaseStart::Kept) continue;
       RunOptions options;
       options.write_files = true;
-      options.force = force;
-      SweepCase& c = cases[k];
+      options.restart = c.start == CaseStart::Restart;
+      options.force = !options.restart && (force || holds_results(c.config.output.directory));
       try {
         c.result = Simulation(c.config, options).run();
         c.status = CaseStatus::Complete;
@@ -147,6 +178,13 @@ std::string overlay_command(const std::string& directory, const std::vector<Swee
   std::string command = "tools/plot --overlay " + shell_quoted(directory);
   for (const SweepCase& c : cases) command += " " + shell_quoted(c.config.output.directory);
   return command;
+}
+
+std::string resume_command(const std::string& rccm_path, const std::string& config_file,
+                           const std::vector<std::string>& overrides, const std::string& directory) {
+  std::string command = shell_quoted(rccm_path) + " sweep " + shell_quoted(config_file);
+  for (const std::string& o : overrides) command += " --set " + shell_quoted(o);
+  return command + " --restart " + shell_quoted(directory);
 }
 
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,

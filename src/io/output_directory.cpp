@@ -63,6 +63,13 @@ bool writable(const fs::path& dir) {
 }
 }  // namespace
 
+bool holds_results(const std::string& directory) {
+  std::error_code ec;
+  for (const char* mark : result_marks)
+    if (fs::exists(fs::path(directory) / mark, ec)) return true;
+  return false;
+}
+
 bool holds_complete_run(const std::string& directory) {
   std::ifstream report(fs::path(directory) / "report.txt");
   for (std::string line; std::getline(report, line);)

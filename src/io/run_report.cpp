@@ -135,6 +135,8 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                      {"sweeps_mean", s.sweeps_mean},
                      {"sweeps_max", s.sweeps_max},
                      {"cpu_seconds", s.cpu_seconds}});
+  json snapshots = json::array();
+  for (const Snapshot& s : r.snapshots) snapshots.push_back({{"t", s.t}, {"debonded_length", s.debonded_length}});
   const json report = {{"config", cfg.file},
                        {"hypothesis", cfg.mesh.dim() == 3 ? "3D" : hypothesis_name(cfg.hypothesis())},
                        {"rccm_version", RCCM_VERSION_STRING},
@@ -158,12 +160,51 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"restarted_at", r.restarted_at},
                        {"setup_seconds", r.setup_seconds},
                        {"energy", energy},
+                       {"peak_force", r.peak_force},
+                       {"peak_time", r.peak_time},
+                       {"snapshots", snapshots},
                        {"per_step", steps},
                        {"complete", r.stopped.empty()},
                        {"stopped", r.stopped},
-                       {"warnings", r.warnings}};
+                       {"warnings", r.warnings},
+                       {"settings", cfg.fingerprint()}};
   // Numbers to 17 significant digits (nlohmann writes the shortest exact form), strings escaped.
   out << report.dump(2) << "\n";
+}
+
+RunResult read_report_json(const std::string& directory, const Config& cfg) {
+  const std::string path = directory + "/report.json";
+  std::ifstream in(path);
+  const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
+  if (!in || report.is_discarded() || !report.is_object())
+    throw InputError(path + ": cannot be read as the report of a run (damaged?); run the case afresh with --force");
+  if (report.value("settings", std::string()) != cfg.fingerprint())
+    throw InputError(path + ": a run of other settings than " + cfg.file +
+                     " with this case's --set (or written by another version of rccm); run it afresh with --force");
+  try {
+    RunResult r;
+    r.stopped = report.at("stopped").get<std::string>();
+    const nlohmann::json& e = report.at("energy");
+    r.energy = {e.at("external_work"),        e.at("strain_energy"),        e.at("free_energy_change"),
+                e.at("damage_dissipation"),   e.at("friction_dissipation"), e.at("normal_contact_work")};
+    r.peak_force = report.at("peak_force").get<std::vector<double>>();
+    r.peak_time = report.at("peak_time").get<std::vector<double>>();
+    for (const nlohmann::json& s : report.at("snapshots")) {
+      r.snapshots.emplace_back();
+      r.snapshots.back().t = s.at("t");
+      r.snapshots.back().debonded_length = s.at("debonded_length");
+    }
+    r.integrator.steps = report.at("steps");
+    r.integrator.rejected = report.at("rejected_steps");
+    r.solves.contact_solves = report.at("contact_solves");
+    r.wall_seconds = report.at("wall_seconds");
+    r.setup_seconds = report.at("setup_seconds");
+    r.restarted_at = report.at("restarted_at");
+    r.warnings = report.at("warnings").get<std::vector<std::string>>();
+    return r;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(path + ": not the report of a run of this rccm (" + e.what() + "); run the case afresh with --force");
+  }
 }
 
 void write_reports(const std::string& directory, const Config& cfg, const RunResult& r) {

@@ -1,11 +1,16 @@
 // rccm sweep: the grid of cases, the rate-independent case, and a physical check of the
 // alpha study: more viscosity, higher peak peel force (docs/MODEL.md s3, docs/BENCHMARKS.md B1).
 #include "helpers.hpp"
+#include "rccm/app/stop_request.hpp"
+#include "rccm/base/errors.hpp"
 #include "rccm/app/sweep.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
 
 #include <filesystem>
 #include <fstream>
@@ -165,4 +170,71 @@ TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the fa
   std::getline(jobs, first);
   CHECK_THAT(first, Catch::Contains("--set 'solver.max_iterations=2'") && Catch::Contains(" -o '"));
   fs::remove_all(dir);
+}
+
+TEST_CASE("a resumed sweep keeps its complete cases and restarts its stopped one: the uninterrupted sweep's summary",
+          "[sweep]") {
+  const fs::path whole = fs::temp_directory_path() / "rccm_test_sweep_whole";
+  const fs::path parts = fs::temp_directory_path() / "rccm_test_sweep_parts";
+  for (const fs::path& d : {whole, parts}) {
+    fs::remove_all(d);
+    fs::create_directories(d);
+  }
+  // Fixed steps: a restart takes the same steps, so the same figures to round-off.
+  const std::vector<SweepAxis> axes = {{"interface.alpha", {"1", "10", "100"}}};
+  const std::vector<std::string> fixed = {"integrator.method=euler", "time.steps=300"};
+  std::vector<SweepCase> reference = make_sweep_cases(b1, fixed, axes, whole.string());
+  run_sweep(reference, 2);
+  std::ostringstream table;
+  write_sweep_summary(table, whole.string(), axes, reference, "rccm", b1);
+
+  // alpha = 1 completes, alpha = 10 is stopped at step 170 (a Ctrl-C), alpha = 100 never starts.
+  std::vector<SweepCase> cases = make_sweep_cases(b1, fixed, axes, parts.string());
+  std::vector<SweepCase> first(cases.begin(), cases.begin() + 1);
+  run_sweep(first, 1);
+  RunOptions stopped;
+  stopped.write_files = true;
+  stopped.observer = [](const AcceptedStep& a) {
+    if (a.step == 170) request_stop(SIGINT);
+  };
+  REQUIRE_THROWS_AS(Simulation(cases[1].config, stopped).run(), Interrupted);
+  request_stop(0);
+  const std::string kept = test::read_text((parts / "alpha=1" / "history.csv").string());
+
+  // A sweep of other settings into that directory is refused before anything runs.
+  std::vector<SweepCase> other = make_sweep_cases(b1, {"integrator.method=euler", "time.steps=301"}, axes, parts.string());
+  CHECK_THROWS_WITH(plan_resumed_sweep(other),
+                    Catch::Contains("sweep --restart: case alpha=1: ") && Catch::Contains("a run of other settings"));
+  CHECK(test::read_text((parts / "alpha=1" / "history.csv").string()) == kept);
+
+  const std::vector<std::string> notes = plan_resumed_sweep(cases);
+  CHECK(notes.size() == 2);
+  CHECK(cases[0].start == CaseStart::Kept);
+  CHECK(cases[1].start == CaseStart::Restart);
+  CHECK(cases[2].start == CaseStart::Fresh);
+  run_sweep(cases, 2);
+  write_sweep_summary(table, parts.string(), axes, cases, "rccm", b1);
+  CHECK(test::read_text((parts / "alpha=1" / "history.csv").string()) == kept);  // not run again
+  CHECK(cases[1].result.restarted_at > 0);                                        // went on, not afresh
+  CHECK(cases[1].result.integrator.steps == reference[1].result.integrator.steps);
+
+  // The summary is the uninterrupted sweep's, figure by figure (the wall times aside).
+  const test::CsvTable a = test::read_csv((whole / "summary.csv").string()),
+                       b = test::read_csv((parts / "summary.csv").string());
+  REQUIRE(a.header == b.header);
+  REQUIRE(a.rows.size() == 3);
+  REQUIRE(b.rows.size() == 3);
+  for (std::size_t r = 0; r < 3; ++r)
+    for (std::size_t k = 0; k < a.header.size(); ++k) {
+      INFO(a.rows[r][0] << ", " << a.header[k] << ": " << a.rows[r][k] << " against " << b.rows[r][k]);
+      if (a.header[k] == "wall [s]") continue;
+      char* end = nullptr;
+      const double x = std::strtod(a.rows[r][k].c_str(), &end);
+      if (a.rows[r][k].empty() || *end != '\0')
+        CHECK(a.rows[r][k] == b.rows[r][k]);
+      else
+        CHECK(std::abs(std::stod(b.rows[r][k]) - x) <= 1e-9 * std::max(1.0, std::abs(x)));
+    }
+  fs::remove_all(whole);
+  fs::remove_all(parts);
 }

@@ -38,11 +38,6 @@ RunResult run(const Config& cfg, bool restart = false, int stop_at_step = -1) {
   return Simulation(cfg, o).run();
 }
 
-std::string text(const std::string& path) {
-  std::ifstream in(path);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 std::size_t lines(const std::string& path) {
   std::ifstream in(path);
   std::size_t n = 0;
@@ -74,7 +69,7 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     const Checkpoint ck = read_checkpoint(parts, b1(parts, c.settings));
     CHECK(ck.step == c.stop_at);
     // The stopped run's report counts the steps its files hold: history.csv's rows after t = 0.
-    CHECK_THAT(text(parts + "/report.txt"), Catch::Contains("accepted steps          " + std::to_string(c.stop_at) + " ("));
+    CHECK_THAT(test::read_text(parts + "/report.txt"), Catch::Contains("accepted steps          " + std::to_string(c.stop_at) + " ("));
     CHECK(lines(parts + "/history.csv") == std::size_t(c.stop_at) + 2);
     CHECK(ck.state.t < 10.0);
     const RunResult restarted = run(b1(parts, c.settings), true);
@@ -106,26 +101,26 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     // and T), each file there: the restart keeps the frames before its checkpoint.
     for (const char* pvd : {"/results.pvd", "/interface.pvd"}) {
       INFO(pvd);
-      const std::string frames = text(parts + pvd);
-      CHECK(frames == text(whole + pvd));
+      const std::string frames = test::read_text(parts + pvd);
+      CHECK(frames == test::read_text(whole + pvd));
       CHECK(std::count(frames.begin(), frames.end(), '\n') > 4);
     }
     for (const char* frame : {"0000", "0001", "0002", "0003"})
       CHECK((fs::exists(parts + "/mesh_" + frame + ".vtu") && fs::exists(parts + "/interface_" + frame + ".vtp")));
     CHECK(!fs::exists(parts + "/mesh_" + std::string("0004.vtu")));
-    CHECK_THAT(text(parts + "/report.txt"), Catch::Contains(" s) since the restart at t = "));
+    CHECK_THAT(test::read_text(parts + "/report.txt"), Catch::Contains(" s) since the restart at t = "));
     CHECK(restarted.restarted_at == ck.state.t);
     CHECK(reference.restarted_at == -1);
     // A restart of the finished run is refused, its files untouched.
-    const std::string report = text(parts + "/report.txt");
+    const std::string report = test::read_text(parts + "/report.txt");
     CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains("checkpoint.txt: the run reached time.T = ") && Catch::Contains(" s: there is nothing to go on with"));
-    CHECK(text(parts + "/report.txt") == report);
+    CHECK(test::read_text(parts + "/report.txt") == report);
     CHECK(fs::exists(parts + "/mesh_0003.vtu"));
     // A run cut off after its checkpoint at T, before its report (kill -9): the restart ends it.
     fs::remove(parts + "/report.txt");
     fs::remove(parts + "/report.json");
     CHECK(run(b1(parts, c.settings), true).snapshots.size() == reference.snapshots.size());
-    CHECK_THAT(text(parts + "/report.txt"), Catch::Contains("status: complete"));
+    CHECK_THAT(test::read_text(parts + "/report.txt"), Catch::Contains("status: complete"));
     fs::remove_all(whole);
     fs::remove_all(parts);
   }
@@ -136,7 +131,7 @@ TEST_CASE("a stop asked while the run records its step 0 ends it at step 1 with 
   request_stop(0);
   CHECK_THROWS_AS(run(b1(dir, {"integrator.method=\"euler\"", "time.steps=300"}), false, 0), Interrupted);
   request_stop(0);
-  CHECK_THAT(text(dir + "/report.txt"), Catch::Contains("status: STOPPED"));
+  CHECK_THAT(test::read_text(dir + "/report.txt"), Catch::Contains("status: STOPPED"));
   CHECK(read_checkpoint(dir, b1(dir, {"integrator.method=\"euler\"", "time.steps=300"})).step == 1);
   fs::remove_all(dir);
 }

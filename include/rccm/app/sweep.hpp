@@ -21,12 +21,17 @@ struct SweepAxis {
 enum class CaseStatus { NotRun, Complete, Failed, Interrupted };
 const char* case_status_name(CaseStatus s);
 
+/// How a case starts: afresh, from the checkpoint of its stopped run (a resumed sweep), or
+/// not at all: its directory holds its complete run, whose figures the summary reads.
+enum class CaseStart { Fresh, Restart, Kept };
+
 struct SweepCase {
   std::string name;                    // subdirectory, e.g. "alpha=0.01" or "alpha=1_mu=0.3"
   std::vector<std::string> values;     // its value of each axis
   std::vector<std::string> overrides;  // path=value of this case (the fixed ones first)
   Config config;
   RunResult result;
+  CaseStart start = CaseStart::Fresh;
   CaseStatus status = CaseStatus::NotRun;
   std::string error;                   // a case that failed or was interrupted: its message
   int signal = 0;                      // the signal that interrupted it
@@ -42,14 +47,25 @@ void split_sweep_settings(const std::vector<std::string>& items, std::vector<Swe
 std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const std::vector<std::string>& fixed,
                                         const std::vector<SweepAxis>& axes, const std::string& directory);
 
+/// `rccm sweep --restart DIR`: decides each case's start from its directory, before anything
+/// runs: a complete run of the case's settings is kept (its report read), a stopped one goes
+/// on from its checkpoint, a case without a checkpoint runs afresh. Throws InputError
+/// (nothing written) when a directory holds a run of other settings or a damaged checkpoint.
+/// Returns one line per case that is not run afresh from an empty directory, for the user.
+std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases);
+
 /// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier
-/// results). A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
+/// results), as their `start` says (a kept case is not run). A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
 /// step and starts no other: the cases not run keep the status NotRun.
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
 /// The tools/plot command that overlays this sweep's cases into `directory` (the cases named
 /// one by one: the directory may also hold an earlier sweep's).
 std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases);
+
+/// The command that goes on with an interrupted sweep: `rccm sweep CONFIG --set ... --restart DIR`.
+std::string resume_command(const std::string& rccm_path, const std::string& config_file,
+                           const std::vector<std::string>& overrides, const std::string& directory);
 
 /// summary.csv (one row per case: its value of each axis, its status, its figures, empty
 /// cells where a case did not complete) and jobs.txt in `directory`, and the table on `out`.

@@ -8,6 +8,10 @@
 
 namespace rccm {
 
+/// Whether `directory` holds the results of a run, complete or not (history.csv, report.txt
+/// or results.pvd).
+bool holds_results(const std::string& directory);
+
 /// Whether `directory` holds a run that reached T (its report.txt says `status: complete`).
 bool holds_complete_run(const std::string& directory);
 
