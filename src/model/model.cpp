@@ -146,9 +146,10 @@ Model::Model(const Config& cfg, Mesh mesh)
 }
 
 void Model::check_prescribed_gaps(const Config& cfg) const {
-  // A contact pair whose displacement along its normal is prescribed has its gap fixed by
-  // the loads: a prescribed closing beyond g0 would press it into the foundation (with an
-  // unbounded contact force). Loads are piecewise linear: checked at their breakpoints.
+  // A contact pair whose relative displacement along its normal (u_node - u_opposite, the
+  // opposite node fixed for a rigid foundation) is prescribed has its gap fixed by the loads:
+  // a prescribed closing beyond g0 would press it into the foundation or the other body (with
+  // an unbounded contact force). Loads are piecewise linear: checked at their breakpoints.
   std::vector<double> times = {0.0, cfg.time.T};
   for (const LoadCase& lc : loads_)
     for (double t : lc.amplitude.t)
@@ -157,19 +158,25 @@ void Model::check_prescribed_gaps(const Config& cfg) const {
   for (int d : supports_) prescribed[d] = 1;
   for (int i = 0; i < interface_.size(); ++i) {
     const ContactPair& c = interface_.pairs[i];
-    if (c.opposite >= 0) continue;
     bool fixed = true;
-    for (int x = 0; x < mesh_.dim; ++x) fixed = fixed && (c.frame.n[x] == 0 || prescribed[mesh_.dof(c.node, x)]);
+    for (int x = 0; x < mesh_.dim; ++x)
+      fixed = fixed && (c.frame.n[x] == 0 || (prescribed[mesh_.dof(c.node, x)] &&
+                                              (c.opposite < 0 || prescribed[mesh_.dof(c.opposite, x)])));
     if (!fixed) continue;
     for (double t : times) {
       double u_n = 0;
       for (const LoadCase& lc : loads_)
-        for (int x = 0; x < mesh_.dim; ++x) u_n += c.frame.n[x] * lc.amplitude(t) * lc.displacement[mesh_.dof(c.node, x)];
+        for (int x = 0; x < mesh_.dim; ++x) {
+          const double opposite = c.opposite < 0 ? 0.0 : lc.displacement[mesh_.dof(c.opposite, x)];
+          u_n += c.frame.n[x] * lc.amplitude(t) * (lc.displacement[mesh_.dof(c.node, x)] - opposite);
+        }
       if (c.g0 + u_n < -1e-9 * size_) {
         std::ostringstream m;
-        m << cfg.where("loads") << ": the prescribed displacement pushes contact node " << i << " "
-          << point(mesh_.nodes[c.node], mesh_.dim) << " into the foundation by " << -(c.g0 + u_n)
-          << " mm at t = " << t << " s; a node on the interface may be moved away from the foundation (or along "
+        m << cfg.where("loads") << ": the prescribed displacements push contact node " << i << " "
+          << point(mesh_.nodes[c.node], mesh_.dim) << " into "
+          << (c.opposite < 0 ? "the foundation" : "the other body (its mesh node " + std::to_string(c.opposite) + ")")
+          << " by " << -(c.g0 + u_n)
+          << " mm at t = " << t << " s; a node on the interface may be moved away from the other side (or along "
           << "it), not into it";
         throw InputError(m.str());
       }

@@ -208,3 +208,22 @@ time = { T = 1.0; };
                                           "= 1.0; mu = 0.3; };" + rest),
                     Catch::Contains("interface.tolerance: applies to an interface between two bodies"));
 }
+
+TEST_CASE("both sides of a body-body interface prescribed: an opening runs, a closing is refused", "[bodies]") {
+  // The gap's change is u_n = n . (u_upper - u_lower): each side's displacement counts, and
+  // one side prescribed alone fixes no gap (the other body gives way).
+  const auto sides = [](double upper, const std::string& lower) {
+    const std::string y = "type = \"displacement\"; component = \"y\"; value = ";
+    return two_blocks("material = { E = 1000.0; nu = 0.3; };\ninterface = {" + glue + "Cn = 1e3; };\n" +
+                      "loads = ( { node_set = \"upper_bottom\"; " + y + std::to_string(upper) + "; },\n" +
+                      (lower.empty() ? "" : " { node_set = \"lower_top\"; " + y + lower + "; },\n") +
+                      " { node_set = \"bottom\"; type = \"displacement\"; component = \"x\"; value = 0.0; } );\n"
+                      "time = { T = 1.0; };\n");
+  };
+  CHECK_NOTHROW(test::make_model(sides(0.05, "0.02")));
+  CHECK_NOTHROW(test::make_model(sides(-0.02, "")));
+  CHECK_THROWS_WITH(test::make_model(sides(0.02, "0.05")),
+                    Catch::Contains("loads: the prescribed displacements push contact node 0 (0, 2) into the other body "
+                                    "(its mesh node ") &&
+                        Catch::Contains("by 0.03 mm at t = 1 s"));
+}
