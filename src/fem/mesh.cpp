@@ -14,8 +14,8 @@ namespace rccm {
 
 std::string point(const Eigen::Vector3d& x, int dim) {
   std::ostringstream m;
-  m << "(" << x.x() << ", " << x.y();
-  if (dim == 3) m << ", " << x.z();
+  m << "(" << x.x() + 0.0 << ", " << x.y() + 0.0;  // + 0.0: -0 written as 0
+  if (dim == 3) m << ", " << x.z() + 0.0;
   m << ")";
   return m.str();
 }

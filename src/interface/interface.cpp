@@ -110,7 +110,7 @@ class PairBuilder {
       const FlatFoundation line{flat_normal()};
       c.frame = line.frame_at(x);
       c.g0 = per_node("g0", p_.g0, k);
-      require_facing(c.frame.n, k, ".normal", "the foundation normal");
+      require_facing(c.frame.n, k, ".normal", "the foundation normal", "give the normal from the foundation into the body");
     } else if (p_.facing == Facing::Circle) {
       const CircleFoundation circle{Eigen::Vector3d(p_.centre[0], p_.centre[1], p_.centre[2]), p_.radius, p_.inside,
                                     Eigen::Vector3d(p_.axis[0], p_.axis[1], p_.axis[2])};
@@ -126,7 +126,11 @@ class PairBuilder {
         fail(".circle", m.str());
       }
       c.g0 = std::max(c.g0, 0.0);  // a node on the circle to round-off
-      require_facing(c.frame.n, k, ".circle.side", "the circle's normal");
+      require_facing(c.frame.n, k, ".circle.side", "the circle's normal",
+                     "the circle does not face the boundary there: check interface.circle.side (\"inside\": the body "
+                     "fills a circular hole; \"outside\": the body lies outside the circle), or, where the boundary "
+                     "reaches beyond what the circle faces (a flat face under a cylinder), give interface.boundary as "
+                     "the node set of the part the circle can touch");
     } else {
       c.opposite = opposite_[k];
       // The averaged normal: B's outward and A's inward, from B into A.
@@ -182,13 +186,16 @@ class PairBuilder {
   }
 
   /// A foundation's normal points into the body: against the boundary's outward normal
-  /// (within 60 degrees), not out of the body nor along the interface.
-  void require_facing(const Eigen::Vector3d& n, std::size_t k, const char* setting, const char* what) const {
-    if (-n.dot(outward_[k]) >= 0.5) return;
+  /// (within 60 degrees), not out of the body nor along the interface. `remedy`: what to change.
+  void require_facing(const Eigen::Vector3d& n, std::size_t k, const char* setting, const char* what,
+                      const char* remedy) const {
+    const double cosine = -n.dot(outward_[k]);
+    if (cosine >= 0.5) return;
     std::ostringstream m;
     m << what << " " << point(n, mesh_.dim) << " does not point into the body at contact node " << k << " "
       << point(mesh_.nodes[nodes_[k]], mesh_.dim) << ", where the boundary's inward normal is "
-      << point(Eigen::Vector3d::Zero() - outward_[k], mesh_.dim) << "; give the normal from the foundation into the body";
+      << point(Eigen::Vector3d::Zero() - outward_[k], mesh_.dim) << " (" << std::setprecision(3)
+      << std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / M_PI << " degrees apart, at most 60); " << remedy;
     fail(setting, m.str());
   }
 
