@@ -211,6 +211,19 @@ class PairBuilder {
           shortest = std::min(shortest, (mesh_.nodes[f[a]] - mesh_.nodes[f[(a + 1) % f.size()]]).norm());
       tolerance = 1e-3 * shortest;
     }
+    std::vector<char> in_other(mesh_.num_nodes(), 0);
+    for (int n : other) in_other[n] = 1;
+    for (int n : nodes_)
+      if (in_other[n])
+        fail(".opposite", "node " + point(mesh_.nodes[n], mesh_.dim) + " belongs to both '" + p_.boundary + "' and '" +
+                              p_.opposite + "': the bodies share their nodes there; give each body its own curve (3D: "
+                              "surface) along the interface (its own points), meshed alike");
+    // Counted before matching: no tolerance pairs sets of different sizes one to one.
+    if (other.size() != nodes_.size())
+      fail(".opposite", "the meshes of '" + p_.boundary + "' and '" + p_.opposite + "' do not match: '" + p_.opposite +
+                            "' has " + std::to_string(other.size()) + " nodes, '" + p_.boundary + "' " +
+                            std::to_string(nodes_.size()) + "; the meshes along the interface must match node for node "
+                            "(mesh both curves (surfaces) alike: Transfinite Curve, Transfinite Surface)");
     std::vector<int> taken(mesh_.num_nodes(), -1);
     double worst = 0;
     int worst_k = -1;
@@ -222,10 +235,6 @@ class PairBuilder {
         const double d = (mesh_.nodes[n] - x).norm();
         if (d < d_best) d_best = d, best = n;
       }
-      if (best == nodes_[k])
-        fail(".opposite", "node " + point(x, mesh_.dim) + " belongs to both '" + p_.boundary + "' and '" + p_.opposite +
-                              "': the bodies share their nodes there; give each body its own curve (3D: surface) along the "
-                              "interface (its own points), meshed alike");
       if (d_best > worst) worst = d_best, worst_k = static_cast<int>(k);
       if (taken[best] >= 0 && d_best <= tolerance)
         fail(".opposite", "nodes " + point(x, mesh_.dim) + " and " + point(mesh_.nodes[nodes_[taken[best]]], mesh_.dim) + " of '" + p_.boundary +
@@ -241,9 +250,6 @@ class PairBuilder {
         << p_.path << ".tolerance";
       fail(".opposite", m.str());
     }
-    if (other.size() != nodes_.size())
-      fail(".opposite", "node set '" + p_.opposite + "' has " + std::to_string(other.size()) + " nodes, '" + p_.boundary +
-                            "' " + std::to_string(nodes_.size()) + ": the meshes along the interface must match node for node");
     const std::vector<Eigen::Vector3d> outward_b = mesh_.outward_normals(other);
     std::vector<Eigen::Vector3d> by_node(mesh_.num_nodes(), Eigen::Vector3d::Zero());
     for (std::size_t j = 0; j < other.size(); ++j) by_node[other[j]] = outward_b[j];

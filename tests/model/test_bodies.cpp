@@ -196,7 +196,8 @@ time = { T = 1.0; };
           "nearest node of 'bottom'");
   refused(two_blocks(material + "interface = { boundary = \"upper_bottom\"; opposite = \"lower_left\"; Cn = 1e3; Ct = "
                                 "1e3; w = 1.0; mu = 0.3; };" + rest),
-          "do not match");
+          "the meshes of 'upper_bottom' and 'lower_left' do not match: 'lower_left' has 3 nodes, 'upper_bottom' 11; "
+          "the meshes along the interface must match node for node");
   // One node on two interfaces.
   refused(two_blocks(material + "interfaces = ( {" + glue + "Cn = 1e3; }, { boundary = \"upper_left\"; normal = [1.0, "
                                 "0.0]; Cn = 1.0; Ct = 1.0; w = 1.0; mu = 0.3; } );" + rest),
