@@ -34,8 +34,10 @@ class PairBuilder {
     std::vector<ContactPair> pairs;
     for (std::size_t k = 0; k < nodes_.size(); ++k) {
       if (length[k] <= 0)
-        fail(".boundary", "node set '" + p_.boundary + "' must be a chain of boundary edges (node " +
-                              std::to_string(nodes_[k]) + " at " + point(mesh_.nodes[nodes_[k]], mesh_.dim) + " lies on none of its edges)");
+        fail(".boundary", "node set '" + p_.boundary + "' must be made of the mesh's boundary " +
+                              (mesh_.dim == 3 ? "faces" : "edges") + ": node " + std::to_string(nodes_[k]) + " at " +
+                              point(mesh_.nodes[nodes_[k]], mesh_.dim) + " lies on none of them (a curve inside a " +
+                              "body, as gmsh's Line In Surface, bounds nothing: an interface lies on a body's boundary)");
       ContactPair c;
       c.node = nodes_[k];
       c.measure = a[k];
@@ -88,7 +90,8 @@ class PairBuilder {
       out[n] = edges[n] > 0 && cracked[n] == edges[n];
       any = any || out[n];
     }
-    if (!any) fail(".precrack", "node set '" + p_.precrack + "' holds no edge of '" + p_.boundary + "'");
+    if (!any) fail(".precrack", "node set '" + p_.precrack + "' holds no " + (mesh_.dim == 3 ? "face" : "edge") + " of '" +
+                                p_.boundary + "'");
     return out;
   }
 

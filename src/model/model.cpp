@@ -47,6 +47,11 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
 std::vector<Material> body_materials(const Config& cfg, const Mesh& mesh) {
   if (cfg.bodies.size() == 1 && cfg.bodies[0].name.empty())
     return std::vector<Material>(mesh.body_names.size(), Material(cfg.bodies[0].material));
+  // A name the mesh does not know first: a misspelt body is also one without a material.
+  for (std::size_t k = 0; k < cfg.bodies.size(); ++k)
+    if (std::find(mesh.body_names.begin(), mesh.body_names.end(), cfg.bodies[k].name) == mesh.body_names.end())
+      throw InputError(cfg.where("bodies.[" + std::to_string(k) + "].name") + ": the mesh has no body named '" +
+                       cfg.bodies[k].name + "'" + suggestion(cfg.bodies[k].name, mesh.body_names));
   std::vector<Material> out;
   for (const std::string& name : mesh.body_names) {
     const auto it = std::find_if(cfg.bodies.begin(), cfg.bodies.end(), [&](const BodyParams& b) { return b.name == name; });
@@ -55,10 +60,6 @@ std::vector<Material> body_materials(const Config& cfg, const Mesh& mesh) {
                        "\"; material = { ... }; } to bodies");
     out.emplace_back(it->material);
   }
-  for (std::size_t k = 0; k < cfg.bodies.size(); ++k)
-    if (std::find(mesh.body_names.begin(), mesh.body_names.end(), cfg.bodies[k].name) == mesh.body_names.end())
-      throw InputError(cfg.where("bodies.[" + std::to_string(k) + "].name") + ": the mesh has no body named '" +
-                       cfg.bodies[k].name + "'" + suggestion(cfg.bodies[k].name, mesh.body_names));
   return out;
 }
 

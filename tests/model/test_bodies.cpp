@@ -182,13 +182,13 @@ time = { T = 1.0; };
   const auto refused = [](const Config& cfg, const std::string& expect) {
     CHECK_THROWS_WITH(test::make_model(cfg), Catch::Contains(expect));
   };
-  // A body without a material, a material for no body (with the nearest name).
+  // A body without a material; a misspelt name (the nearest one suggested).
   refused(two_blocks("bodies = ( { name = \"lower\"; material = { E = 1.0; nu = 0.3; }; } );\ninterface = {" + glue +
                      "Cn = 1e3; };" + rest),
           "bodies: the mesh's body 'upper' has no material");
   refused(two_blocks("bodies = ( { name = \"lower\"; material = { E = 1.0; nu = 0.3; }; }, { name = \"uper\"; material "
                      "= { E = 1.0; nu = 0.3; }; } );\ninterface = {" + glue + "Cn = 1e3; };" + rest),
-          "the mesh's body 'upper' has no material");
+          "bodies.[1].name: the mesh has no body named 'uper'; did you mean 'upper'?");  // the typo, not its consequence
   // Meshes that do not match along the interface: the worst node is named.
   refused(two_blocks(material + "interface = { boundary = \"upper_bottom\"; opposite = \"bottom\"; Cn = 1e3; Ct = 1e3; "
                                 "w = 1.0; mu = 0.3; };" + rest),
