@@ -175,7 +175,8 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   c.settings = r.text("settings");
   if (c.settings != cfg.settings)
     throw InputError(path + ": written by a run of other settings than " + cfg.file +
-                     " with these --set options; restart with the same config and options, or run afresh with --force");
+                     " with these --set options (the mesh file's contents count too: an edited or remeshed .geo/.msh is "
+                     "another problem); restart with the same config, options and mesh, or run afresh with --force");
   c.step = static_cast<int>(r.count("step", 2e9));
   c.last_step = r.number("last_step");
   r.check(std::isfinite(c.last_step) && c.last_step >= 0 && c.last_step <= cfg.time.T,

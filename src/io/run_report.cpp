@@ -180,7 +180,8 @@ RunResult read_report_json(const std::string& directory, const Config& cfg) {
     throw InputError(path + ": cannot be read as the report of a run (damaged?); run the case afresh with --force");
   if (report.value("settings", std::string()) != cfg.fingerprint())
     throw InputError(path + ": a run of other settings than " + cfg.file +
-                     " with this case's --set (or written by another version of rccm); run it afresh with --force");
+                     " with this case's --set (or of another mesh file, or written by another version of rccm); run it "
+                     "afresh with --force");
   try {
     RunResult r;
     r.stopped = report.at("stopped").get<std::string>();
