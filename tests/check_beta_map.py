@@ -44,7 +44,7 @@ if not run.surfaces or len(run.surfaces) != len(paths):
     fail(f"{run_dir}: expected a 3D run with {len(paths)} interface CSVs, tools/plot read {len(run.surfaces)}")
 for t, c in run.surfaces:
     triangulation, beta, (xi, xj) = plot.beta_map_triangulation(run, t, c)
-    if (xi, xj) != ("x", "z"):
+    if (xi, xj) != ("x [mm]", "z [mm]"):
         fail(f"t = {t}: the map is drawn in ({xi}, {xj}), the interface y = 0 in (x, z)")
     x, z, T = triangulation.x, triangulation.y, triangulation.triangles
     area = 0.5 * np.abs((x[T[:, 1]] - x[T[:, 0]]) * (z[T[:, 2]] - z[T[:, 0]])

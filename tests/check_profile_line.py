@@ -7,7 +7,10 @@
   3. a disc of radius 10 on a polar grid, opened most at the rim point (10, 0, 0): the nodes
      within half a spacing of the diameter through it, the centre among them, at distances
      |x - 10| from it;
-  4. a strip 20 x 2 cells opened at a corner: its whole first row, along its length.
+  4. a strip 20 x 2 cells opened at a corner: its whole first row, along its length;
+  5. a bore (a closed cylinder about an oblique axis): unrolled (arcs, heights, its period),
+     the profile around it through the most opened node's ring;
+  6. half a bore unrolled open; a flat grid and a spherical cap are no cylinders.
 Skipped (77) without numpy and matplotlib.
 Usage: check_profile_line.py TOOLS_PLOT"""
 import importlib.machinery
@@ -82,5 +85,36 @@ rows, s = plot.profile_line(columns(S, u_n, a))
 row = [n for n in range(i.size) if k.ravel()[n] == 0]
 check(sorted(rows.tolist()) == row, f"strip: rows {sorted(rows.tolist())}, want the row z = 0 {row}")
 check(np.allclose(s, S[rows, 0], atol=1e-12), "strip: distances are not x")
+# 5. A bore (a closed cylinder of radius 2 about an oblique axis through (1, -2, 3)): 24 nodes
+#    around, 5 rings 1 mm apart. Unrolled: arcs 2 pi R / 24 apart, heights along the axis as
+#    built, closed (its period the circumference); the profile from the most opened node
+#    (angle 0, the middle ring) runs around the surface through that ring, not across the bore.
+R, n_around = 2.0, 24
+e1 = np.cross(axis, [1.0, 0.0, 0.0])
+e1 /= np.linalg.norm(e1)
+e2 = np.cross(axis, e1)
+th, h = np.meshgrid(2 * math.pi * np.arange(n_around) / n_around, np.arange(5.0), indexing="ij")
+th, h = th.ravel(), h.ravel()
+B = np.array([1.0, -2.0, 3.0]) + np.outer(R * np.cos(th), e1) + np.outer(R * np.sin(th), e2) + np.outer(h, axis)
+uv, names, period = plot.surface_coordinates(B)
+check(names == ("around the axis [mm]", "along the axis [mm]"), f"bore: coordinates {names}")
+check(period is not None and abs(period - 2 * math.pi * R) < 1e-9, f"bore: period {period}")
+step = 2 * math.pi * R / n_around
+check(np.allclose(np.diff(np.unique(np.round(uv[:, 0] / step, 9))), 1.0), "bore: arcs not 2 pi R / 24 apart")
+check(np.allclose(np.ptp(uv[:, 0]), (n_around - 1) * step), f"bore: arcs span {np.ptp(uv[:, 0])}")
+check(np.allclose(uv[:, 1] - h, (uv[:, 1] - h)[0], atol=1e-9), "bore: heights along the axis are not the built ones")
+u_n = 1.0 / (1.0 + np.linalg.norm(B - B[2], axis=1))  # node 2: angle 0, height 2
+rows, s = plot.profile_line(columns(B, u_n, np.full(len(B), step)))
+check(sorted(rows.tolist()) == [n for n in range(len(B)) if h[n] == 2.0], f"bore: rows {sorted(rows.tolist())}, want the ring h = 2")
+check(np.allclose(np.diff(np.sort(s)), step) and np.min(np.abs(s)) < 1e-9, f"bore: distances {np.sort(s)}")
+# 6. Half of it (180 degrees): unrolled open (no period), over pi R; a flat grid and a
+#    spherical cap are no cylinders.
+half = th <= math.pi + 1e-12
+uv, _, period = plot.surface_coordinates(B[half])
+check(period is None and abs(np.ptp(uv[:, 0]) - math.pi * R) < 1e-9, f"half bore: period {period}, arc {np.ptp(uv[:, 0])}")
+check(plot.tube(X) is None, "the flat grid taken for a cylinder")
+phi, psi = np.meshgrid(np.linspace(0, 0.8, 6), np.linspace(0, 2 * math.pi, 16, endpoint=False), indexing="ij")
+cap = 10 * np.column_stack([(np.sin(phi) * np.cos(psi)).ravel(), np.cos(phi).ravel(), (np.sin(phi) * np.sin(psi)).ravel()])
+check(plot.tube(cap) is None, "a spherical cap taken for a cylinder")
 print(f"{'FAILED' if failed else 'passed'}: {failed} failure(s)")
 sys.exit(1 if failed else 0)
