@@ -10,7 +10,8 @@
   4. a strip 20 x 2 cells opened at a corner: its whole first row, along its length;
   5. a bore (a closed cylinder about an oblique axis): unrolled (arcs, heights, its period),
      the profile around it through the most opened node's ring;
-  6. half a bore unrolled open; a flat grid and a spherical cap are no cylinders.
+  6. half a bore unrolled open; a flat grid and a spherical cap are no cylinders;
+  7. 2D: a closed circle's profile goes back to its first node, a half circle's does not.
 Skipped (77) without numpy and matplotlib.
 Usage: check_profile_line.py TOOLS_PLOT"""
 import importlib.machinery
@@ -116,5 +117,15 @@ check(plot.tube(X) is None, "the flat grid taken for a cylinder")
 phi, psi = np.meshgrid(np.linspace(0, 0.8, 6), np.linspace(0, 2 * math.pi, 16, endpoint=False), indexing="ij")
 cap = 10 * np.column_stack([(np.sin(phi) * np.cos(psi)).ravel(), np.cos(phi).ravel(), (np.sin(phi) * np.sin(psi)).ravel()])
 check(plot.tube(cap) is None, "a spherical cap taken for a cylinder")
+# 7. 2D: a fibre's circle (16 nodes, radius 3) is drawn around and back to its first node,
+#    over the polygon's perimeter; a half circle stays open.
+phi = 2 * math.pi * np.arange(16) / 16
+circle = {"x [mm]": 3 * np.cos(phi), "y [mm]": 3 * np.sin(phi), "beta": np.linspace(0.0, 1.0, 16)}
+(s, v, _, _), = plot.profile_lines(circle, circle["beta"])
+check(len(s) == 17 and abs(s[-1] - 16 * 6 * math.sin(math.pi / 16)) < 1e-12 and v[-1] == v[0],
+      f"circle: {len(s)} points to s = {s[-1]}, last value {v[-1]}")
+half = {k: np.asarray(val)[:9] for k, val in circle.items()}
+(s, v, _, _), = plot.profile_lines(half, half["beta"])
+check(len(s) == 9, f"half circle: {len(s)} points, want 9 (open)")
 print(f"{'FAILED' if failed else 'passed'}: {failed} failure(s)")
 sys.exit(1 if failed else 0)
