@@ -11,7 +11,7 @@
 #     case starts, summary.csv says which cases did not run;
 #     the same sweep again is refused, its summary untouched, the interrupted case's restart
 #     suggested; the command the stopped sweep printed goes on with it (sweep --restart); a
-#     sweep's overlay command names its own cases;
+#     sweep's overlay command names its own cases, its cases' notes their case;
 #  7. a second SIGINT exits at once;
 #  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it.
 set -u
@@ -142,6 +142,10 @@ resume=$(sed -n 's/^rccm: sweep stopped by a signal.*; to go on: //p' "$work/swe
 eval "$resume" >"$work/resume.out" 2>&1; rc=$?
 check; [ "$rc" -eq 0 ] && grep -q "^# alpha=1: goes on from its checkpoint at t = " "$work/resume.out" \
   && [ "$(grep -c ',complete,' "$out/summary.csv")" = 3 ] || fail "sweep --restart: exit $rc, command '$resume', $(cat "$work/resume.out")"
+# A sweep's cases say whose their notes are (they run at once and mix on stderr).
+"$rccm" sweep "$b1" "${short[@]}" --set interface.alpha=1,2 --set 'interface.normal=[0.1,1.0]' -o "$work/swn" >/dev/null 2>"$work/err"
+check; grep -q "^rccm: alpha=1: note: .*interface.normal: .* is 5.71 degrees from the boundary's inward normal" "$work/err" \
+  && grep -q "^rccm: alpha=2: note: " "$work/err" || fail "sweep notes without their case: $(cat "$work/err")"
 # A finished run's directory suggests no restart; a sweep's overlay command names its own cases.
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.alpha=1,2 -o "$work/sw2" >"$work/sw2.out" 2>&1 || fail "sweep sw2: $(cat "$work/sw2.out")"
 check; grep -q "plots: tools/plot --overlay '$work/sw2' '$work/sw2/alpha=1' '$work/sw2/alpha=2'$" "$work/sw2.out" || fail "sweep overlay command: $(tail -1 "$work/sw2.out")"

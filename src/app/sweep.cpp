@@ -154,6 +154,7 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
       if (c.start == CaseStart::Kept) continue;
       RunOptions options;
       options.write_files = true;
+      options.label = c.name;  // the cases' notes mix on stderr
       options.restart = c.start == CaseStart::Restart;
       options.force = !options.restart && (force || holds_results(c.config.output.directory));
       try {

@@ -61,7 +61,7 @@ void Recorder::open(const Model& model) {
   // Doubtful geometry said before the first step: a user can stop a long run at once, and a
   // run that fails has said it (the report's warnings repeat it at the end).
   if (options_.write_files)
-    for (const std::string& note : model.interface().notes) std::fprintf(stderr, "rccm: note: %s\n", note.c_str());
+    for (const std::string& note : model.interface().notes) say_note(note);
   if (options_.step_log)
     *options_.step_log << "# " << cfg_.file << ": " << result_.nodes << " nodes, " << result_.cells << " cells, "
                        << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
@@ -158,7 +158,12 @@ void Recorder::note_crawl(const AcceptedStep& a) {
                 "(interface.Cn, Ct, mu)",
                 a.t, a.dt);
   crawl_notes_.push_back(text);
-  if (options_.write_files) std::fprintf(stderr, "\nrccm: note: %s\n", text);
+  if (options_.write_files) say_note(text, options_.progress ? "\n" : "");
+}
+
+void Recorder::say_note(const std::string& text, const char* lead) const {
+  std::fprintf(stderr, "%srccm: %s%snote: %s\n", lead, options_.label.c_str(), options_.label.empty() ? "" : ": ",
+               text.c_str());
 }
 
 void Recorder::save_checkpoint() {

@@ -30,6 +30,7 @@ struct RunOptions {
   bool force = false;                // overwrite the results of an earlier run there
   bool restart = false;              // go on from output.directory/checkpoint.txt (Checkpoint)
   BetaOde::Observer observer;        // called after each accepted step (tests)
+  std::string label;                 // said before its notes on stderr (a sweep's case: "alpha=0.1")
 };
 
 class Recorder {
@@ -70,6 +71,8 @@ class Recorder {
   bool rate_independent() const { return cfg_.integrator.method == Method::RateIndependent; }
   RunResult close(const std::string& stopped);
   void note_crawl(const AcceptedStep& a);
+  /// "rccm: [label: ]note: text" on stderr, after `lead` (a line break ending the progress line).
+  void say_note(const std::string& text, const char* lead = "") const;
   void save_checkpoint();
   double seconds() const;
 
