@@ -238,8 +238,8 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
     // The message: why a case did not complete, or the warnings of one that did (an
     // unstable Euler, a doubtful interface): a complete row is not a trusted one.
     std::string message = c.error;
-    for (const std::string& w : complete ? r.warnings : std::vector<std::string>{})
-      message += (message.empty() ? "warning: " : "; warning: ") + w;
+    if (complete)
+      for (const std::string& w : r.warnings) message += (message.empty() ? "warning: " : "; warning: ") + w;
     message = one_line(message);
     for (const std::optional<double>& f : figures) row.push_back(f ? csv_number(*f) : "");
     row.push_back(message);
