@@ -36,8 +36,9 @@ class PairBuilder {
       if (length[k] <= 0)
         fail(".boundary", "node set '" + p_.boundary + "' must be made of the mesh's boundary " +
                               (mesh_.dim == 3 ? "faces" : "edges") + ": node " + std::to_string(nodes_[k]) + " at " +
-                              point(mesh_.nodes[nodes_[k]], mesh_.dim) + " lies on none of them (a curve inside a " +
-                              "body, as gmsh's Line In Surface, bounds nothing: an interface lies on a body's boundary)");
+                              point(mesh_.nodes[nodes_[k]], mesh_.dim) + " lies on none of them (a lone point, or a " +
+                              "curve inside a body such as gmsh's Line In Surface, bounds nothing: an interface lies on "
+                              "a body's boundary)");
       ContactPair c;
       c.node = nodes_[k];
       c.measure = a[k];
