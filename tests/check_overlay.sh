@@ -7,7 +7,8 @@
 #  2. given as the sweep prints it, SWEEP_DIR/*/, with an empty directory and a copy of a case
 #     whose report says STOPPED added: exit 0, both skipped with a note, OUT_DIR created;
 #  3. nothing but non-result arguments, or no run directory at all: exit non-zero with a
-#     message, no figure written.
+#     message, no figure written;
+#  4. a case alpha = 0 is labelled rate-independent, without the integrator it did not use.
 # Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
@@ -84,6 +85,19 @@ refused --overlay "$work/none"
 # OUT_DIR forgotten: the first run is not taken for it (overlay.png written into a run).
 refused --overlay "${cases[0]}" "${cases[@]}"
 [ -e "${cases[0]}/overlay.png" ] && fail "overlay.png written into a run's directory" || pass
+
+# 4. Legends: alpha = 0 is the rate-independent limit whatever integrator.method says.
+if $py - "$plot" <<'EOF'
+import importlib.machinery, importlib.util, sys
+loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
+plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
+loader.exec_module(plot)
+zero, one = plot.case_label("method=arkode_alpha=0"), plot.case_label("method=euler_alpha=1")
+ok = "rate-independent" in zero and "arkode" not in zero and "euler" in one and "rate-independent" not in one
+print("" if ok else f"labels: {zero!r}, {one!r}")
+sys.exit(0 if ok else 1)
+EOF
+then pass; else fail "case labels"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
