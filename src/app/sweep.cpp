@@ -2,6 +2,7 @@
 
 #include "rccm/app/stop_request.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/fem/mesh_source.hpp"
 #include "rccm/io/atomic_file.hpp"
 #include "rccm/io/checkpoint.hpp"
 #include "rccm/io/config_reader.hpp"
@@ -18,6 +19,7 @@
 #include <optional>
 #include <ostream>
 #include <thread>
+#include <utility>
 
 namespace rccm {
 
@@ -147,18 +149,31 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
 }
 
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
+  for (SweepCase& c : cases) {  // before any case computes (see the header)
+    if (c.start == CaseStart::Kept || c.config.mesh.file.empty() || stop_signal()) continue;
+    try {
+      c.mesh = make_mesh(c.config);
+    } catch (const Interrupted& e) {
+      c.status = CaseStatus::Interrupted;
+      c.error = e.what();
+      c.signal = e.signal;
+    } catch (const InputError& e) {
+      c.status = CaseStatus::Failed;
+      c.error = e.what();
+    }
+  }
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
     for (std::size_t k = next++; k < cases.size() && !stop_signal(); k = next++) {
       SweepCase& c = cases[k];
-      if (c.start == CaseStart::Kept) continue;
+      if (c.start == CaseStart::Kept || c.status != CaseStatus::NotRun) continue;  // kept, or its mesh refused
       RunOptions options;
       options.write_files = true;
       options.label = c.name;  // the cases' notes mix on stderr
       options.restart = c.start == CaseStart::Restart;
       options.force = !options.restart && (force || holds_results(c.config.output.directory));
       try {
-        c.result = Simulation(c.config, options).run();
+        c.result = Simulation(c.config, options, std::exchange(c.mesh, std::nullopt)).run();
         c.status = CaseStatus::Complete;
       } catch (const Interrupted& e) {
         c.status = CaseStatus::Interrupted;

@@ -7,6 +7,7 @@
 #include "rccm/base/config.hpp"
 
 #include <iosfwd>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,6 +32,7 @@ struct SweepCase {
   std::vector<std::string> overrides;  // path=value of this case (the fixed ones first)
   Config config;
   RunResult result;
+  std::optional<Mesh> mesh;           // read before the cases run (run_sweep)
   CaseStart start = CaseStart::Fresh;
   CaseStatus status = CaseStatus::NotRun;
   std::string error;                   // a case that failed or was interrupted: its message
@@ -55,7 +57,10 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
 std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases);
 
 /// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier
-/// results), as their `start` says (a kept case is not run). A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
+/// results), as their `start` says (a kept case is not run). The gmsh files are read first,
+/// one case after the other on the calling thread: gmsh runs in a forked process, and a fork
+/// while other cases compute can hang in OpenBLAS's fork handler (it joins its threads while
+/// another case's factorization uses them). A case whose mesh is refused is failed there. A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
 /// step and starts no other: the cases not run keep the status NotRun.
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
