@@ -82,7 +82,10 @@ std::string Config::fingerprint() const {
   // solver.linear is left out: the body's solver changes the results by round-off only, and a
   // run interrupted in one process may go on under mpirun.
   const IntegratorParams& A = integrator;
-  h("integrator.method", double(A.method))("integrator.scheme", double(A.scheme))("integrator.table", A.table);
+  // The default table spelled out is the default (hashed as empty, as before it could be named).
+  const bool default_table = A.scheme == ArkodeScheme::Dirk && A.table == IntegratorParams::default_dirk_table;
+  h("integrator.method", double(A.method))("integrator.scheme", double(A.scheme))
+      ("integrator.table", default_table ? std::string() : A.table);
   h("integrator.initial_step", A.initial_step)("integrator.fixed_step", A.fixed_step);
   h.list("output.times", output.times);
   for (const NamedPoint& p : output.watch) h("output.watch.name", p.name).list("output.watch.point", p.point);

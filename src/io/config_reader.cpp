@@ -796,8 +796,10 @@ void check_consistency(const Reader& r, const Setting& root, Config& c) {
   }
   const Setting* integrator = root.exists("integrator") ? &root["integrator"] : nullptr;
   const IntegratorParams& A = c.integrator;
-  if (A.min_step > 0 && A.max_step > 0 && A.min_step > A.max_step)
-    r.fail((*integrator)["min_step"], "must not exceed integrator.max_step (" + std::to_string(A.max_step) + " s)");
+  const double max_step = A.max_step > 0 ? A.max_step : c.time.T / 50;  // ARKODE's, as the integrator sets it
+  if (A.min_step > max_step)
+    r.fail((*integrator)["min_step"], "must not exceed integrator.max_step (" + csv_number(max_step) + " s" +
+                                          (A.max_step > 0 ? "" : ", its default T/50") + ")");
   if (A.fixed_step > c.time.T) r.fail((*integrator)["fixed_step"], "must not exceed time.T");
   if (!A.table.empty() && !arkode_table_exists(A.scheme == ArkodeScheme::Dirk, A.table))
     r.fail((*integrator)["table"], "no " + std::string(A.scheme == ArkodeScheme::Dirk ? "DIRK" : "ERK") +

@@ -74,7 +74,7 @@ struct ArkodeIntegrator::Impl {
     // DIRK: the 4th-order ESDIRK of ARK4(3)6L (explicit first stage, stiffly accurate,
     // L-stable) by default; on B1 it needs 4x fewer contact solves than ARKODE's default
     // SDIRK_5_3_4 for the same error in beta (README "Performance").
-    const std::string table = !p.table.empty() ? p.table : implicit ? "ARKODE_ARK436L2SA_DIRK_6_3_4" : "";
+    const std::string table = !p.table.empty() ? p.table : implicit ? IntegratorParams::default_dirk_table : "";
     if (!table.empty())
       check(ARKStepSetTableName(mem, implicit ? table.c_str() : "ARKODE_DIRK_NONE",
                                 implicit ? "ARKODE_ERK_NONE" : table.c_str()),

@@ -337,6 +337,7 @@ output = { directory = "b"; checkpoint_steps = 7; };
   std::string crlf;
   for (char c : base) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
   CHECK(test::config_from_text(crlf).settings == fp);
+  CHECK(test::config_from_text(base, {"integrator.table=ARKODE_ARK436L2SA_DIRK_6_3_4"}).settings == fp);  // the default
   // Each setting that shapes the results changes it.
   for (const char* change :
        {"mesh.origin=[1.0,0.0]", "mesh.size=[10.0,6.0]", "mesh.nx=5", "mesh.ny=3", "mesh.element=Q4", "mesh.rotation=1.0",

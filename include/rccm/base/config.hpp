@@ -153,6 +153,8 @@ struct IntegratorParams {
   Method method = Method::Arkode;
   ArkodeScheme scheme = ArkodeScheme::Dirk;  // arkode: implicit DIRK (robust as alpha -> 0) or ERK
   std::string table;                          // arkode Butcher table name; empty: the scheme's default
+  /// The DIRK scheme's default table (ARK4(3)6L's ESDIRK: docs/PERFORMANCE.md).
+  static constexpr const char* default_dirk_table = "ARKODE_ARK436L2SA_DIRK_6_3_4";
   double rtol = 1e-6, atol = 1e-10;           // arkode tolerances (beta is dimensionless)
   double max_step = 0.0;                      // s; 0: T / 50
   double initial_step = 0.0;                  // s; 0: ARKODE's estimate
