@@ -73,7 +73,7 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   for (const rccm::SweepCase& c : cases) {
     if (c.status == rccm::CaseStatus::Interrupted || c.status == rccm::CaseStatus::NotRun) {
       std::cerr << "rccm: sweep stopped by a signal; cases not run are marked 'not run' in summary.csv; to go on: "
-                << rccm::resume_command(rccm_path, config_file, overrides, directory) << "\n";
+                << rccm::resume_command(rccm_path, config_file, overrides, jobs, directory) << "\n";
       return 128 + rccm::stop_signal();
     }
     if (c.status == rccm::CaseStatus::Failed) status = 3;

@@ -10,10 +10,13 @@
 #include "rccm/io/output_directory.hpp"
 #include "rccm/io/run_report.hpp"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
+#include <fstream>
 #include <filesystem>
 #include <iterator>
 #include <optional>
@@ -128,11 +131,18 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
   for (SweepCase& c : cases) {
     const std::string& dir = c.config.output.directory;
     try {
+      check_output_directory(c.config, true);  // a directory it can write (results there are for below)
       if (holds_complete_run(dir)) {
         c.result = read_report_json(dir, c.config);
         c.start = CaseStart::Kept;
         c.status = CaseStatus::Complete;
-        notes.push_back(c.name + ": complete, kept");
+        std::ifstream report(dir + "/report.json");
+        const bool same_controls = nlohmann::json::parse(report, nullptr, false).value("controls", std::string()) ==
+                                   c.config.controls_fingerprint();
+        notes.push_back(c.name + ": complete, kept" +
+                        (same_controls ? std::string()
+                                       : " (it ran with other numerical controls than this sweep's: solver or "
+                                         "integrator tolerances, iterations, steps; its report.txt has its own)"));
       } else if (std::filesystem::exists(checkpoint_path(dir))) {
         const Checkpoint checkpoint = read_checkpoint(dir, c.config);  // refused here if not this case's
         c.start = CaseStart::Restart;
@@ -142,7 +152,8 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
         notes.push_back(c.name + ": stopped before its first checkpoint, runs afresh");
       }
     } catch (const InputError& e) {
-      throw InputError("sweep --restart: case " + c.name + ": " + e.what());
+      throw InputError("sweep --restart: case " + c.name + ": " + e.what() +
+                       "; to run this case afresh, remove its directory (--force runs the whole sweep afresh)");
     }
   }
   return notes;
@@ -197,10 +208,10 @@ std::string overlay_command(const std::string& directory, const std::vector<Swee
 }
 
 std::string resume_command(const std::string& rccm_path, const std::string& config_file,
-                           const std::vector<std::string>& overrides, const std::string& directory) {
+                           const std::vector<std::string>& overrides, int jobs, const std::string& directory) {
   std::string command = shell_quoted(rccm_path) + " sweep " + shell_quoted(config_file);
   for (const std::string& o : overrides) command += " --set " + shell_quoted(o);
-  return command + " --restart " + shell_quoted(directory);
+  return command + " -j " + std::to_string(jobs) + " --restart " + shell_quoted(directory);
 }
 
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,

@@ -93,6 +93,18 @@ std::string Config::fingerprint() const {
   return h.hex();
 }
 
+std::string Config::controls_fingerprint() const {
+  Hash h;
+  h("solver.method", double(solver.method))("solver.form", double(solver.form))("solver.relaxation", solver.relaxation);
+  h("solver.over_relaxation", solver.over_relaxation)("solver.tolerance", solver.tolerance);
+  h("solver.max_iterations", solver.max_iterations)("solver.anderson", solver.anderson);
+  const IntegratorParams& A = integrator;
+  h("integrator.rtol", A.rtol)("integrator.atol", A.atol)("integrator.min_step", A.min_step);
+  h("integrator.max_step", A.max_step)("integrator.max_steps", A.max_steps);
+  h("integrator.fixed_point_tolerance", A.fixed_point_tolerance)("integrator.fixed_point_iterations", A.fixed_point_iterations);
+  return h.hex();
+}
+
 std::string Config::where(const std::string& path) const {
   const auto it = lines.find(path);
   if (it == lines.end() || it->second == 0) return file + ": " + path;

@@ -167,7 +167,8 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"complete", r.stopped.empty()},
                        {"stopped", r.stopped},
                        {"warnings", r.warnings},
-                       {"settings", cfg.fingerprint()}};
+                       {"settings", cfg.fingerprint()},
+                       {"controls", cfg.controls_fingerprint()}};
   // Numbers to 17 significant digits (nlohmann writes the shortest exact form), strings escaped.
   out << report.dump(2) << "\n";
 }
@@ -177,12 +178,14 @@ RunResult read_report_json(const std::string& directory, const Config& cfg) {
   std::ifstream in(path);
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
   if (!in || report.is_discarded() || !report.is_object())
-    throw InputError(path + ": cannot be read as the report of a run (damaged?); run the case afresh with --force");
+    throw InputError(path + ": cannot be read as the report of a run (damaged?)");
   if (report.value("settings", std::string()) != cfg.fingerprint())
     throw InputError(path + ": a run of other settings than " + cfg.file +
-                     " with this case's --set (or of another mesh file, or written by another version of rccm); run it "
-                     "afresh with --force");
+                     " with this case's --set (or of another mesh file, or written by another version of rccm)");
   try {
+    if (!report.at("complete").get<bool>())
+      throw InputError(path + ": the report of a run that did not complete, beside a report.txt that says it did (a "
+                       "run cut off while writing them?)");
     RunResult r;
     r.stopped = report.at("stopped").get<std::string>();
     const nlohmann::json& e = report.at("energy");
@@ -204,7 +207,7 @@ RunResult read_report_json(const std::string& directory, const Config& cfg) {
     r.warnings = report.at("warnings").get<std::vector<std::string>>();
     return r;
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(path + ": not the report of a run of this rccm (" + e.what() + "); run the case afresh with --force");
+    throw InputError(path + ": not the report of a run of this rccm (" + e.what() + ")");
   }
 }
 
@@ -212,8 +215,8 @@ void write_reports(const std::string& directory, const Config& cfg, const RunRes
   AtomicFile txt(directory + "/report.txt"), json(directory + "/report.json");
   write_report_text(txt.stream(), cfg, r);
   write_report_json(json.stream(), cfg, r);
+  json.commit();  // report.txt last: its "status: complete" marks a finished run (holds_complete_run)
   txt.commit();
-  json.commit();
 }
 
 }  // namespace rccm

@@ -14,6 +14,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 
 using namespace rccm;
@@ -207,14 +208,37 @@ TEST_CASE("a resumed sweep keeps its complete cases and restarts its stopped one
                     Catch::Contains("sweep --restart: case alpha=1: ") && Catch::Contains("a run of other settings"));
   CHECK(test::read_text((parts / "alpha=1" / "history.csv").string()) == kept);
 
+  // Other numerical controls (a restart may change them): the complete case is kept, and said so.
+  std::vector<SweepCase> controls =
+      make_sweep_cases(b1, {"integrator.method=euler", "time.steps=300", "solver.tolerance=1e-9"}, axes, parts.string());
+  CHECK_THAT(plan_resumed_sweep(controls).at(0),
+             Catch::StartsWith("alpha=1: complete, kept (it ran with other numerical controls"));
+  // A case directory that is a file is refused before anything runs.
+  const fs::path odd = fs::temp_directory_path() / "rccm_test_sweep_odd";
+  fs::remove_all(odd);
+  fs::create_directories(odd);
+  std::ofstream(odd / "alpha=1") << "not a directory\n";
+  std::vector<SweepCase> in_odd = make_sweep_cases(b1, fixed, axes, odd.string());
+  CHECK_THROWS_WITH(plan_resumed_sweep(in_odd), Catch::Contains("case alpha=1: ") && Catch::Contains("is a file, not a directory"));
+  fs::remove_all(odd);
+
   const std::vector<std::string> notes = plan_resumed_sweep(cases);
   CHECK(notes.size() == 2);
+  CHECK(notes.at(0) == "alpha=1: complete, kept");
   CHECK(cases[0].start == CaseStart::Kept);
   CHECK(cases[1].start == CaseStart::Restart);
   CHECK(cases[2].start == CaseStart::Fresh);
   run_sweep(cases, 2);
   write_sweep_summary(table, parts.string(), axes, cases, "rccm", b1);
   CHECK(test::read_text((parts / "alpha=1" / "history.csv").string()) == kept);  // not run again
+  // A report.json that says the run did not complete, beside a report.txt that says it did, is
+  // no complete case.
+  const std::string json = test::read_text((parts / "alpha=1" / "report.json").string());
+  std::ofstream((parts / "alpha=1" / "report.json").string())
+      << std::regex_replace(json, std::regex("\"complete\": true"), "\"complete\": false");
+  std::vector<SweepCase> stale = make_sweep_cases(b1, fixed, axes, parts.string());
+  CHECK_THROWS_WITH(plan_resumed_sweep(stale), Catch::Contains("the report of a run that did not complete"));
+  std::ofstream((parts / "alpha=1" / "report.json").string()) << json;
   CHECK(cases[1].result.restarted_at > 0);                                        // went on, not afresh
   CHECK(cases[1].result.integrator.steps == reference[1].result.integrator.steps);
 

@@ -68,9 +68,9 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 /// one by one: the directory may also hold an earlier sweep's).
 std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases);
 
-/// The command that goes on with an interrupted sweep: `rccm sweep CONFIG --set ... --restart DIR`.
+/// The command that goes on with an interrupted sweep: `rccm sweep CONFIG --set ... -j N --restart DIR`.
 std::string resume_command(const std::string& rccm_path, const std::string& config_file,
-                           const std::vector<std::string>& overrides, const std::string& directory);
+                           const std::vector<std::string>& overrides, int jobs, const std::string& directory);
 
 /// summary.csv (one row per case: its value of each axis, its status, its figures, empty
 /// cells where a case did not complete) and jobs.txt in `directory`, and the table on `out`.

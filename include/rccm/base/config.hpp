@@ -193,6 +193,9 @@ struct Config {
   /// however they are written (order, 69000 or 6.9e4, line ends, defaults spelled out).
   std::string settings;
   std::string fingerprint() const;  // a new field goes in there unless it is such a control
+  /// A hash of those numerical controls alone (report.json: a resumed sweep says which of its
+  /// complete cases ran with other controls than the sweep gives now).
+  std::string controls_fingerprint() const;
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
   /// the wrong length once the mesh is known, an unwritable directory).
