@@ -1,6 +1,6 @@
 // Description
 //   How the viscosity alpha of the interface changes the peel of benchmark B1 (a thin
-//   aluminium layer pulled off a rigid support at one end; ../shared/docs/BENCHMARKS.md). For
+//   aluminium layer pulled off a rigid support at one end; docs/BENCHMARKS.md). For
 //   each alpha one run gives the peak peel force at A, when it occurs, and the debonded length
 //   (beta < 0.5) at t1 = 3.571 s and at T. More viscosity holds the layer longer: the peak
 //   force and its time grow with alpha and less of the layer comes off. The program checks

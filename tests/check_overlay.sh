@@ -93,8 +93,10 @@ loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
 plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
 loader.exec_module(plot)
 zero, one = plot.case_label("method=arkode_alpha=0"), plot.case_label("method=euler_alpha=1")
+solver = plot.case_label("method=rccm_alpha=0")  # solver.method: still counts at alpha = 0
 ok = "rate-independent" in zero and "arkode" not in zero and "euler" in one and "rate-independent" not in one
-print("" if ok else f"labels: {zero!r}, {one!r}")
+ok = ok and "rccm" in solver
+print("" if ok else f"labels: {zero!r}, {one!r}, {solver!r}")
 sys.exit(0 if ok else 1)
 EOF
 then pass; else fail "case labels"; fi

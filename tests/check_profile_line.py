@@ -108,6 +108,13 @@ u_n = 1.0 / (1.0 + np.linalg.norm(B - B[2], axis=1))  # node 2: angle 0, height 
 rows, s = plot.profile_line(columns(B, u_n, np.full(len(B), step)))
 check(sorted(rows.tolist()) == [n for n in range(len(B)) if h[n] == 2.0], f"bore: rows {sorted(rows.tolist())}, want the ring h = 2")
 check(np.allclose(np.diff(np.sort(s)), step) and np.min(np.abs(s)) < 1e-9, f"bore: distances {np.sort(s)}")
+# Coarser bores and more rings: still cylinders, still closed (8 around: 45 degrees apart).
+for around, rings in ((8, 3), (12, 6), (16, 6), (14, 8)):
+    th_c, h_c = np.meshgrid(2 * math.pi * np.arange(around) / around, np.arange(float(rings)), indexing="ij")
+    C = np.outer(R * np.cos(th_c.ravel()), e1) + np.outer(R * np.sin(th_c.ravel()), e2) + np.outer(h_c.ravel(), axis)
+    _, _, period_c = plot.surface_coordinates(C)
+    check(period_c is not None and abs(period_c - 2 * math.pi * R) < 1e-9,
+          f"bore of {around} x {rings}: period {period_c}, want {2 * math.pi * R}")
 # 6. Half of it (180 degrees): unrolled open (no period), over pi R; a flat grid and a
 #    spherical cap are no cylinders.
 half = th <= math.pi + 1e-12

@@ -34,11 +34,11 @@ class PairBuilder {
     std::vector<ContactPair> pairs;
     for (std::size_t k = 0; k < nodes_.size(); ++k) {
       if (length[k] <= 0)
-        fail(".boundary", "node set '" + p_.boundary + "' must be made of the mesh's boundary " +
+        fail(".boundary", "node set '" + p_.boundary + "' must be a chain of the mesh's boundary " +
                               (mesh_.dim == 3 ? "faces" : "edges") + ": node " + std::to_string(nodes_[k]) + " at " +
-                              point(mesh_.nodes[nodes_[k]], mesh_.dim) + " lies on none of them (a lone point, or a " +
-                              "curve inside a body such as gmsh's Line In Surface, bounds nothing: an interface lies on "
-                              "a body's boundary)");
+                              point(mesh_.nodes[nodes_[k]], mesh_.dim) + " is on none of the set's own " +
+                              (mesh_.dim == 3 ? "faces" : "edges") + " (a lone point, or a curve inside a body such " +
+                              "as gmsh's Line In Surface, makes none: an interface lies on a body's boundary)");
       ContactPair c;
       c.node = nodes_[k];
       c.measure = a[k];
