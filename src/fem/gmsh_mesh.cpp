@@ -237,6 +237,9 @@ class Reader {
     gmsh::open(p_.file);
     std::vector<std::string> names;
     gmsh::onelab::getNames(names);
+    // The file's parameters: gmsh's own ONELAB entries ("Gmsh/Model dimension", "ONELAB/Button") are none.
+    const auto gmsh_own = [](const std::string& n) { return n.rfind("Gmsh/", 0) == 0 || n.rfind("ONELAB/", 0) == 0; };
+    names.erase(std::remove_if(names.begin(), names.end(), gmsh_own), names.end());
     for (const auto& [name, value] : p_.parameters)
       if (std::find(names.begin(), names.end(), name) == names.end())
         fail("mesh.parameters." + name + ": the file defines no such parameter (DefineConstant[ " + name +

@@ -179,6 +179,9 @@ Physical Surface("plate") = {1};
 )"),
           "a 2D mesh lies in the plane z = 0");
   refused(fixtures + "two_blocks.geo", "mesh.parameters.Lx: the file defines no such parameter", {{"Lx", 3.0}});
+  // The file's own parameters listed, not gmsh's ONELAB entries.
+  refused(fixtures + "two_blocks.geo", "mesh.parameters.foo: the file defines no such parameter (DefineConstant[ foo = "
+          "{value, Name \"foo\"} ]); known here: L, h, n, quads", {{"foo", 3.0}});
   refused(fixtures + "two_blocks_v41.msh", "mesh.parameters set the DefineConstant values of a .geo file", {{"L", 3.0}});
   // gmsh aborts on it from its OpenMP threads: its process ends, ours reports it.
   refused(geo("point_size_negative.geo", R"(
