@@ -122,6 +122,10 @@ out=$work/sweep
 "$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 -o "$out" >"$work/sweep.out" 2>&1 &
 pid=$!
 for _ in $(seq 100); do [ -f "$out/alpha=1/history.csv" ] && [ "$(wc -l < "$out/alpha=1/history.csv")" -gt 20 ] && break; sleep 0.1; done
+# ... a second sweep into its directory meanwhile is refused (one sweep at a time there) ...
+"$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 --restart "$out" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 2 ] && grep -q "sweep --restart: another rccm run is writing into '$out' now" "$work/err" \
+  || fail "a second sweep at once: exit $rc, $(cat "$work/err")"
 kill -s INT "$pid"; wait "$pid"; rc=$?
 check; [ "$rc" -eq 130 ] || fail "sweep SIGINT: exit $rc, want 130"
 [ -e "$out/alpha=2" ] && fail "sweep SIGINT: the next case started"

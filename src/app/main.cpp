@@ -19,6 +19,7 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
+#include <optional>
 #include <thread>
 #include <unistd.h>
 
@@ -46,9 +47,12 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, directory);
   if (resume && !std::filesystem::is_directory(directory))
     throw rccm::InputError("sweep --restart " + directory + ": no such directory (the directory of the sweep to go on with)");
-  if (resume)  // each case as its directory says: kept, restarted or run
+  std::optional<rccm::DirectoryLock> lock;  // one sweep at a time in the directory (its summary, its cases)
+  if (resume) {  // each case as its directory says: kept, restarted or run
+    lock.emplace(directory, "sweep --restart");
     for (const std::string& note : rccm::plan_resumed_sweep(cases)) std::cout << "# " << note << "\n";
-  else if (!force)  // as `rccm run`: a case's results are not overwritten, and nothing is written
+  }
+  if (!resume && !force)  // as `rccm run`: a case's results are not overwritten, and nothing is written
     for (const rccm::SweepCase& c : cases) {
       try {
         rccm::check_output_directory(c.config, false);
@@ -64,6 +68,7 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
       throw rccm::InputError("sweep: case " + c.name + " solves the body with PETSc (solver.linear), which runs one "
                              "case at a time: give -j 1");
   std::filesystem::create_directories(directory);
+  if (!lock) lock.emplace(directory, "sweep");
   std::cout << "# " << cases.size() << " cases on " << jobs << (jobs == 1 ? " thread" : " threads") << ", in " << directory << "\n";
   rccm::run_sweep(cases, jobs, force);
   rccm::write_sweep_summary(std::cout, directory, axes, cases, rccm_path, config_file);

@@ -104,21 +104,27 @@ OutputDirectory::OutputDirectory(const Config& cfg, bool fresh) : path_(cfg.outp
   fs::create_directories(path_, ec);
   if (ec || !fs::is_directory(path_))
     throw InputError(where + ": cannot create '" + path_ + "' (" + ec.message() + ")");
-  const std::string lock = path_ + "/.lock";
-  lock_fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
-  if (lock_fd_ < 0) throw InputError(where + ": cannot write into '" + path_ + "'");
-  if (::flock(lock_fd_, LOCK_EX | LOCK_NB) != 0) {
-    ::close(lock_fd_);
-    throw InputError(where + ": another rccm run is writing into '" + path_ + "' now; wait for it, or choose another directory");
-  }
+  lock_.emplace(path_, where);
   if (!fresh) return;
   for (const auto& entry : fs::directory_iterator(path_, ec))
     if (result_file(entry.path().filename().string())) fs::remove_all(entry.path(), ec);
   if (fs::is_directory(fs::path(path_) / "plots", ec)) remove_plots(fs::path(path_) / "plots");
 }
 
-OutputDirectory::~OutputDirectory() {
-  ::close(lock_fd_);  // releases the lock; the empty .lock file stays (removing it would race)
+OutputDirectory::~OutputDirectory() = default;
+
+DirectoryLock::DirectoryLock(const std::string& directory, const std::string& where) {
+  const std::string lock = directory + "/.lock";
+  fd_ = ::open(lock.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw InputError(where + ": cannot write into '" + directory + "'");
+  if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
+    ::close(fd_);
+    throw InputError(where + ": another rccm run is writing into '" + directory + "' now; wait for it, or choose another directory");
+  }
+}
+
+DirectoryLock::~DirectoryLock() {
+  ::close(fd_);  // releases the lock; the empty .lock file stays (removing it would race)
 }
 
 }  // namespace rccm

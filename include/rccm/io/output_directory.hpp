@@ -4,6 +4,7 @@
 
 #include "rccm/base/config.hpp"
 
+#include <optional>
 #include <string>
 
 namespace rccm {
@@ -18,6 +19,19 @@ bool holds_complete_run(const std::string& directory);
 /// Throws InputError "file:line: output.directory: ..." when the directory cannot be created
 /// or written, or already holds the results of a run and `force` is false. Creates nothing.
 void check_output_directory(const Config& cfg, bool force);
+
+/// Holds an exclusive lock on DIR/.lock while alive (DIR exists); throws InputError
+/// "<where>: another rccm run is writing into 'DIR' now; ..." when another process holds it.
+class DirectoryLock {
+ public:
+  DirectoryLock(const std::string& directory, const std::string& where);
+  ~DirectoryLock();
+  DirectoryLock(const DirectoryLock&) = delete;
+  DirectoryLock& operator=(const DirectoryLock&) = delete;
+
+ private:
+  int fd_ = -1;
+};
 
 /// Creates output.directory and holds an exclusive lock on DIR/.lock while alive: a second
 /// run into the same directory is refused while this one runs (even with --force). `fresh`:
@@ -34,7 +48,7 @@ class OutputDirectory {
 
  private:
   std::string path_;
-  int lock_fd_ = -1;
+  std::optional<DirectoryLock> lock_;
 };
 
 }  // namespace rccm
