@@ -10,13 +10,10 @@
 #include "rccm/io/output_directory.hpp"
 #include "rccm/io/run_report.hpp"
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <filesystem>
 #include <iterator>
 #include <optional>
@@ -133,14 +130,12 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
     try {
       check_output_directory(c.config, true);  // a directory it can write (results there are for below)
       if (holds_complete_run(dir)) {
-        c.result = read_report_json(dir, c.config);
+        const ReportedRun kept = read_report_json(dir, c.config);
+        c.result = kept.result;
         c.start = CaseStart::Kept;
         c.status = CaseStatus::Complete;
-        std::ifstream report(dir + "/report.json");
-        const bool same_controls = nlohmann::json::parse(report, nullptr, false).value("controls", std::string()) ==
-                                   c.config.controls_fingerprint();
         notes.push_back(c.name + ": complete, kept" +
-                        (same_controls ? std::string()
+                        (kept.same_controls ? std::string()
                                        : " (it ran with other numerical controls than this sweep's: solver or "
                                          "integrator tolerances, iterations, steps; its report.txt has its own)"));
       } else if (std::filesystem::exists(checkpoint_path(dir))) {
@@ -161,7 +156,7 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
 
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   for (SweepCase& c : cases) {  // before any case computes (see the header)
-    if (c.start == CaseStart::Kept || c.config.mesh.file.empty() || stop_signal()) continue;
+    if (c.status != CaseStatus::NotRun || c.config.mesh.file.empty() || stop_signal()) continue;  // kept: Complete
     try {
       c.mesh = make_mesh(c.config);
     } catch (const Interrupted& e) {
@@ -177,7 +172,7 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
   auto worker = [&]() {
     for (std::size_t k = next++; k < cases.size() && !stop_signal(); k = next++) {
       SweepCase& c = cases[k];
-      if (c.start == CaseStart::Kept || c.status != CaseStatus::NotRun) continue;  // kept, or its mesh refused
+      if (c.status != CaseStatus::NotRun) continue;  // kept (Complete), or its mesh refused
       RunOptions options;
       options.write_files = true;
       options.label = c.name;  // the cases' notes mix on stderr

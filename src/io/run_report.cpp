@@ -173,7 +173,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
   out << report.dump(2) << "\n";
 }
 
-RunResult read_report_json(const std::string& directory, const Config& cfg) {
+ReportedRun read_report_json(const std::string& directory, const Config& cfg) {
   const std::string path = directory + "/report.json";
   std::ifstream in(path);
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
@@ -205,7 +205,7 @@ RunResult read_report_json(const std::string& directory, const Config& cfg) {
     r.setup_seconds = report.at("setup_seconds");
     r.restarted_at = report.at("restarted_at");
     r.warnings = report.at("warnings").get<std::vector<std::string>>();
-    return r;
+    return {r, report.value("controls", std::string()) == cfg.controls_fingerprint()};
   } catch (const nlohmann::json::exception& e) {
     throw InputError(path + ": not the report of a run of this rccm (" + e.what() + ")");
   }

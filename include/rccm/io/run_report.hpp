@@ -18,10 +18,16 @@ std::vector<const StepRecord*> paper_table_columns(const RunResult& r);
 void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r);
 void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r);
 
-/// What report.json in `directory` says of a run of `cfg` (its totals, energy, peak forces,
-/// the debonded length at its snapshots, warnings: no fields, no per-step work); throws
-/// InputError naming the file when it cannot be read or holds a run of other settings.
-RunResult read_report_json(const std::string& directory, const Config& cfg);
+/// A complete run as its report.json tells it (a resumed sweep's kept case).
+struct ReportedRun {
+  RunResult result;           // totals, energy, peak forces, debonded length at its snapshots,
+                              // warnings: no fields, no per-step work
+  bool same_controls = true;  // run with cfg's numerical controls (Config::controls_fingerprint)
+};
+
+/// What report.json in `directory` says of a complete run of `cfg`; throws InputError naming
+/// the file when it cannot be read, holds a run of other settings or one that did not complete.
+ReportedRun read_report_json(const std::string& directory, const Config& cfg);
 
 /// Writes report.txt and report.json into `directory`.
 void write_reports(const std::string& directory, const Config& cfg, const RunResult& r);
