@@ -72,10 +72,8 @@ std::string Config::fingerprint() const {
     h.list("loads.t", l.amplitude.t).list("loads.v", l.amplitude.v);
   }
   h("time.T", time.T)("time.steps", time.steps);
-  // Left out: the numerical controls a failure message asks to change (solver.method, form,
-  // relaxation, over_relaxation, tolerance, max_iterations, anderson; integrator.rtol, atol,
-  // min_step, max_step, max_steps and the fixed point's), so that a failed run restarts with
-  // them changed (README "When a run fails").
+  // Left out: the numerical controls a failure message asks to change (controls_fingerprint()
+  // below), so that a failed run restarts with them changed (README "When a run fails").
   h("solver.local_iterations", solver.local_iterations);
   h("solver.rho", double(solver.rho))("solver.active_set", solver.active_set);
   h("solver.active_set_max_nodes", solver.active_set_max_nodes)("solver.compressed_min_nodes", solver.compressed_min_nodes);
