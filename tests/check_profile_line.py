@@ -11,7 +11,8 @@
   5. a bore (a closed cylinder about an oblique axis): unrolled (arcs, heights, its period),
      the profile around it through the most opened node's ring;
   6. half a bore unrolled open; a flat grid and a spherical cap are no cylinders;
-  7. 2D: a closed circle's profile goes back to its first node, a half circle's does not.
+  7. 2D: a closed circle's profile goes back to its first node, a half circle's and a C's
+     whose ends are closer than its spacing do not.
 Skipped (77) without numpy and matplotlib.
 Usage: check_profile_line.py TOOLS_PLOT"""
 import importlib.machinery
@@ -134,5 +135,21 @@ check(len(s) == 17 and abs(s[-1] - 16 * 6 * math.sin(math.pi / 16)) < 1e-12 and 
 half = {k: np.asarray(val)[:9] for k, val in circle.items()}
 (s, v, _, _), = plot.profile_lines(half, half["beta"])
 check(len(s) == 9, f"half circle: {len(s)} points, want 9 (open)")
+#    With the nodes' lengths of the run's CSV (a [mm]: half of each edge at a node): the
+#    circle still closed, and a C whose ends are closer than its spacing (15 edges of 23.5
+#    degrees around, a gap of 7.5 degrees) open.
+def with_lengths(x, y, closed):
+    edges = np.hypot(np.diff(x), np.diff(y))
+    ends = math.hypot(x[-1] - x[0], y[-1] - y[0]) if closed else 0.0
+    a = (np.append(ends, edges) + np.append(edges, ends)) / 2
+    return {"x [mm]": x, "y [mm]": y, "a [mm]": a, "beta": np.linspace(0.0, 1.0, len(x))}
+ring = with_lengths(circle["x [mm]"], circle["y [mm]"], True)
+(s, v, _, _), = plot.profile_lines(ring, ring["beta"])
+check(len(s) == 17 and v[-1] == v[0], f"circle with lengths: {len(s)} points, want 17 (closed)")
+psi = np.radians(23.5) * np.arange(16)
+c_shape = with_lengths(3 * np.cos(psi), 3 * np.sin(psi), False)
+check(math.hypot(c_shape["x [mm]"][-1] - 3, c_shape["y [mm]"][-1]) < 0.5 * 3 * np.radians(23.5), "the C's ends not close")
+(s, v, _, _), = plot.profile_lines(c_shape, c_shape["beta"])
+check(len(s) == 16, f"C with close ends: {len(s)} points, want 16 (open)")
 print(f"{'FAILED' if failed else 'passed'}: {failed} failure(s)")
 sys.exit(1 if failed else 0)
