@@ -5,69 +5,46 @@
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <spawn.h>
 #include <stdexcept>
 #include <sys/prctl.h>
 #include <sys/wait.h>
-#include <thread>
 #include <unistd.h>
+
+extern char** environ;
 
 namespace rccm {
 
-namespace {
-
-/// Writes all of `bytes` to `fd`; false when the reader is gone.
-bool write_all(int fd, const std::string& bytes) {
-  for (std::size_t done = 0; done < bytes.size();) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    if (n < 0 && errno == EINTR) continue;
-    if (n <= 0) return false;
-    done += static_cast<std::size_t>(n);
-  }
-  return true;
-}
-
-[[noreturn]] void child(int fd, const std::function<std::string()>& work, pid_t parent) {
-  // Ended with the caller (a signal that ends it, a crash): no orphan goes on for minutes.
-  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
-  if (::getppid() != parent) ::_exit(1);
-  // The first the kernel stops when the memory runs out, not the caller.
-  if (std::FILE* oom = std::fopen("/proc/self/oom_score_adj", "w")) std::fputs("1000", oom), std::fclose(oom);
-  // A signal ends the work (the caller's handler would only note it), and only its own pipe
-  // stays open: a pipe of another child forked beside it (a sweep's cases) would otherwise
-  // get its end of file only when this child ends.
-  std::signal(SIGINT, SIG_DFL), std::signal(SIGTERM, SIG_DFL);
-  if (fd != 3) ::dup2(fd, 3), fd = 3;
-  ::close_range(4, ~0U, 0);
-  const int null = ::open("/dev/null", O_WRONLY);
-  ::dup2(null, STDOUT_FILENO), ::dup2(null, STDERR_FILENO), ::close(null);
-  std::string bytes;
-  bool answered = false;
-  try {
-    std::thread([&] {
-      try {
-        bytes = work(), answered = true;
-      } catch (...) {
-      }
-    }).join();
-  } catch (...) {
-  }
-  // _exit: the parent's buffers, atexit handlers and static objects are the parent's.
-  ::_exit(answered && write_all(fd, bytes) ? 0 : 1);
-}
-
-}  // namespace
-
-ChildOutcome run_in_child(const std::function<std::string()>& work) {
+ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args) {
   int fds[2];
   if (::pipe2(fds, O_CLOEXEC) != 0) throw std::runtime_error(std::string("cannot open a pipe: ") + std::strerror(errno));
-  const pid_t parent = ::getpid(), pid = ::fork();
-  if (pid < 0) {
-    const int e = errno;
-    ::close(fds[0]), ::close(fds[1]);
-    throw std::runtime_error(std::string("cannot start a process: ") + std::strerror(e));
-  }
-  if (pid == 0) ::close(fds[0]), child(fds[1], work, parent);
+  // posix_spawn (a vfork and exec): safe from a threaded caller, and no fork handler runs
+  // (OpenBLAS's joins its threads at a fork, which hung a sweep whose other cases used them).
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_adddup2(&actions, fds[1], 3);  // the answer (dup2 drops O_CLOEXEC)
+  for (int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO})
+    posix_spawn_file_actions_addopen(&actions, fd, "/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY, 0);
+  // A signal the caller handles is the default in the program (exec resets it): Ctrl-C to
+  // the process group ends it. One the caller blocks is unblocked there.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none;
+  sigemptyset(&none);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  std::vector<char*> argv{const_cast<char*>(program.c_str())};
+  for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
+  argv.push_back(nullptr);
+  pid_t pid = 0;
+  const int started = ::posix_spawn(&pid, program.c_str(), &actions, &attributes, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  posix_spawnattr_destroy(&attributes);
   ::close(fds[1]);
+  if (started != 0) {
+    ::close(fds[0]);
+    throw std::runtime_error("cannot start " + program + ": " + std::strerror(started));
+  }
   ChildOutcome out;
   const auto reap = [pid] {
     int status = 0;
@@ -93,6 +70,13 @@ ChildOutcome run_in_child(const std::function<std::string()>& work) {
   out.finished = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
   out.signal = status != -1 && WIFSIGNALED(status) ? WTERMSIG(status) : 0;
   return out;
+}
+
+bool follow_caller(long caller) {
+  ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+  if (::getppid() != static_cast<pid_t>(caller)) return false;  // ended before the line above
+  if (std::FILE* oom = std::fopen("/proc/self/oom_score_adj", "w")) std::fputs("1000", oom), std::fclose(oom);
+  return true;
 }
 
 }  // namespace rccm

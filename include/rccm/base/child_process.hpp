@@ -1,26 +1,32 @@
-// Work that may crash the process, run in a child process instead: a library that aborts
+// Work that may crash the process, run by another program instead: a library that aborts
 // (gmsh throws some input errors from its OpenMP threads, where nothing can catch them) or
-// that the kernel kills for its memory ends the child, and the caller says what happened.
+// that the kernel kills for its memory ends that process, and the caller says what happened.
+// A program, not a fork of the caller: nothing of the caller's threads (OpenMP's pool,
+// OpenBLAS's, a sweep's cases) is copied into it, and the caller need not load its libraries.
 #pragma once
 
-#include <functional>
 #include <string>
+#include <vector>
 
 namespace rccm {
 
-/// How a child ended: `finished` with what its work returned in `bytes`, or not (then
-/// `bytes` may be cut short), ended by `signal` (0: it exited without an answer).
+/// How a child ended: `finished` (exit status 0) with what it wrote to its file descriptor 3
+/// in `bytes`, or not (then `bytes` may be cut short), ended by `signal` (0: it exited
+/// without an answer).
 struct ChildOutcome {
   bool finished = false;
   std::string bytes;
   int signal = 0;
 };
 
-/// Runs `work` in a forked child, in a thread of its own (OpenMP's thread pool of the
-/// calling thread does not survive a fork: the child's first parallel region would wait for
-/// it forever), with its stdout and stderr closed, and returns what it returned. `work`
-/// must catch its exceptions; one it lets out ends the child without an answer. Throws
-/// std::runtime_error when no process can be started.
-ChildOutcome run_in_child(const std::function<std::string()>& work);
+/// Runs `program` with `args` (argv[1] on), its stdin, stdout and stderr on /dev/null and its
+/// answer read from a pipe on its file descriptor 3, and waits for it. Throws
+/// std::runtime_error naming the program when it cannot be started.
+ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args);
+
+/// In the child: ends it (SIGKILL) when the caller ends, and makes it the first process the
+/// kernel stops when the memory runs out, not the caller. `caller` is the caller's process id
+/// as it passed it; false when the caller has already ended.
+bool follow_caller(long caller);
 
 }  // namespace rccm
