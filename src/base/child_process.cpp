@@ -25,14 +25,18 @@ ChildOutcome run_program(const std::string& program, const std::vector<std::stri
   posix_spawn_file_actions_adddup2(&actions, fds[1], 3);  // the answer (dup2 drops O_CLOEXEC)
   for (int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO})
     posix_spawn_file_actions_addopen(&actions, fd, "/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY, 0);
-  // A signal the caller handles is the default in the program (exec resets it): Ctrl-C to
-  // the process group ends it. One the caller blocks is unblocked there.
+  // SIGINT and SIGTERM at their default in the program (one the caller ignores, as a shell's
+  // background job does, too), none blocked: Ctrl-C to the process group ends it.
   posix_spawnattr_t attributes;
   posix_spawnattr_init(&attributes);
-  sigset_t none;
+  sigset_t none, ending;
   sigemptyset(&none);
+  sigemptyset(&ending);
+  sigaddset(&ending, SIGINT);
+  sigaddset(&ending, SIGTERM);
   posix_spawnattr_setsigmask(&attributes, &none);
-  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK);
+  posix_spawnattr_setsigdefault(&attributes, &ending);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   std::vector<char*> argv{const_cast<char*>(program.c_str())};
   for (const std::string& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);

@@ -1,6 +1,7 @@
 // A program run as a child process (base/child_process, how rccm runs rccm-gmsh): what it
 // writes to its descriptor 3 arrives whole, however long; a crash, an exit without an
-// answer and a program that cannot start are told apart; its stdout is not the answer.
+// answer and a program that cannot start are told apart; its stdout is not the answer; SIGINT
+// ends it even when the caller ignores it.
 #include "rccm/base/child_process.hpp"
 
 #include <catch2/catch.hpp>
@@ -30,4 +31,13 @@ TEST_CASE("child process: its answer arrives whole and a crash or an exit withou
   CHECK(failed.signal == 0);
 
   CHECK_THROWS_WITH(run_program("/nonexistent/rccm-gmsh", {}), Catch::Contains("cannot start /nonexistent/rccm-gmsh"));
+}
+
+TEST_CASE("child process: Ctrl-C ends it even where the caller ignores SIGINT (a shell's background job)", "[child_process]") {
+  const auto previous = std::signal(SIGINT, SIG_IGN);
+  const ChildOutcome out = run_program("/bin/sh", {"-c", "kill -INT $$; printf survived >&3"});
+  std::signal(SIGINT, previous);
+  CHECK_FALSE(out.finished);
+  CHECK(out.signal == SIGINT);
+  CHECK(out.bytes.empty());
 }
