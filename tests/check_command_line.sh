@@ -13,7 +13,8 @@
 #     suggested; the command the stopped sweep printed goes on with it (sweep --restart); a
 #     sweep's overlay command names its own cases, its cases' notes their case;
 #  7. a second SIGINT exits at once;
-#  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it.
+#  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it;
+#  9. started by a parent that ignores SIGCHLD, a gmsh config still gets its mesh.
 set -u
 rccm=$1; src=$2
 work=$(mktemp -d); trap 'umount "$work/full" 2>/dev/null; rm -rf "$work"' EXIT
@@ -186,6 +187,11 @@ alive=$(ps -o stat= -p "$gmsh_pid" 2>/dev/null | grep -v Z)  # a zombie waits fo
 check; [ "$rc" -eq 143 ] && [ -n "$gmsh_pid" ] && [ ! -e "$work/mesh" ] && [ -z "$alive" ] \
   || fail "SIGTERM while gmsh meshes: exit $rc, gmsh's process '$gmsh_pid' $(ps -o pid,stat,cmd -p "$gmsh_pid" | tail -1) $(cat "$work/err")"
 [ -n "$gmsh_pid" ] && kill -9 "$gmsh_pid" 2>/dev/null
+
+# 9. SIGCHLD ignored by the caller (inherited through exec): rccm-gmsh is still waited for.
+/usr/bin/python3 -c 'import os, signal, sys; signal.signal(signal.SIGCHLD, signal.SIG_IGN); os.execv(sys.argv[1], sys.argv[1:])' \
+  "$rccm" run "$src/config/dcb.cfg" -q --set time.steps=4 --set "output.times=[0.5]" -o "$work/sigchld" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 0 ] && [ -s "$work/sigchld/curves.csv" ] || fail "SIGCHLD ignored by the caller: exit $rc, $(cat "$work/err")"
 
 echo "$((checks - failed)) passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -163,6 +163,8 @@ int main(int argc, char** argv) {
 
   // A closed pipe (rccm run -v | head) fails the write, not the run: the files stay complete.
   std::signal(SIGPIPE, SIG_IGN);
+  // rccm waits for rccm-gmsh: a SIGCHLD ignored by whoever started rccm would reap it first.
+  std::signal(SIGCHLD, SIG_DFL);
   // Under mpirun: every process runs the problem, the body's solves are shared, process 0 writes.
   if (rccm::parallel::launched()) rccm::parallel::start();
   const bool root = rccm::parallel::rank() == 0;

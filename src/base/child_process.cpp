@@ -25,6 +25,8 @@ ChildOutcome run_program(const std::string& program, const std::vector<std::stri
   posix_spawn_file_actions_adddup2(&actions, fds[1], 3);  // the answer (dup2 drops O_CLOEXEC)
   for (int fd : {STDIN_FILENO, STDOUT_FILENO, STDERR_FILENO})
     posix_spawn_file_actions_addopen(&actions, fd, "/dev/null", fd == STDIN_FILENO ? O_RDONLY : O_WRONLY, 0);
+  // Nothing else of the caller's (an MPI socket, a pipe without close-on-exec from its parent).
+  posix_spawn_file_actions_addclosefrom_np(&actions, 4);
   // SIGINT and SIGTERM at their default in the program (one the caller ignores, as a shell's
   // background job does, too), none blocked: Ctrl-C to the process group ends it.
   posix_spawnattr_t attributes;
@@ -73,6 +75,7 @@ ChildOutcome run_program(const std::string& program, const std::vector<std::stri
   const int status = reap();
   out.finished = status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
   out.signal = status != -1 && WIFSIGNALED(status) ? WTERMSIG(status) : 0;
+  out.status = status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return out;
 }
 

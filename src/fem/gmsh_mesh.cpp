@@ -27,13 +27,16 @@ std::string gmsh_program() {
   return RCCM_GMSH_PROGRAM;
 }
 
-/// Why gmsh's process ended without an answer (ended by `signal`, or 0), for a message.
-std::string crash_message(int signal) {
-  if (signal == SIGKILL)
+/// Why gmsh's process `program` ended without an answer, for a message.
+std::string crash_message(const std::string& program, const ChildOutcome& out) {
+  if (out.signal == SIGKILL)
     return "gmsh was killed while reading or meshing the file (signal 9, as the kernel does when the memory runs out): "
            "use coarser mesh sizes (the file's parameters) or fewer refinements";
+  if (out.signal == 0 && out.status == 127)
+    return program + " could not start (exit status 127: a library it needs is missing; run it by hand to see which)";
   return std::string("gmsh stopped abnormally while reading or meshing the file (") +
-         (signal ? "signal " + std::to_string(signal) + ", " + strsignal(signal) : std::string("no answer")) +
+         (out.signal ? "signal " + std::to_string(out.signal) + ", " + strsignal(out.signal)
+                     : "exit status " + std::to_string(out.status) + " without an answer") +
          "): gmsh 4.8 aborts on errors it cannot report, most often a mesh size of 0 or below on a Point or from a "
          "Field, or a mesh larger than the memory; check the file's mesh sizes (opening it in gmsh shows its own messages)";
 }
@@ -43,8 +46,9 @@ std::string crash_message(int signal) {
 /// "M"; throws InputError "<place>..." on any error (`place`: the file, or the setting and
 /// the file).
 std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string& where, const std::string& place) {
-  std::vector<std::string> args{dimension_only ? "dimension" : "mesh", std::to_string(::getpid()), p.file,
-                                std::to_string(p.refine), where};
+  const std::string program = gmsh_program();
+  std::vector<std::string> args{dimension_only ? "dimension" : "mesh", std::to_string(::getpid()), mesh_bytes_protocol(),
+                                p.file, std::to_string(p.refine), where};
   for (const auto& [name, value] : p.parameters) {
     char number[32];
     std::snprintf(number, sizeof number, "%.17g", value);
@@ -52,22 +56,29 @@ std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string
   }
   ChildOutcome out;
   try {
-    out = run_program(gmsh_program(), args);
+    out = run_program(program, args);
   } catch (const std::runtime_error& e) {
-    throw InputError(place + e.what() + " (rccm-gmsh reads gmsh files: build it with rccm, cmake --build build)");
+    const bool missing = ::access(program.c_str(), X_OK) != 0;
+    throw InputError(place + e.what() + (missing ? " (rccm-gmsh reads gmsh files: build it with rccm, cmake --build build)" : ""));
   }
   // Ctrl-C or SIGTERM to the process group ends gmsh's process too: the run was stopped.
   if (out.signal == SIGINT || out.signal == SIGTERM)
     throw Interrupted("stopped by signal " + std::to_string(out.signal) + " while gmsh read " + place.substr(0, place.size() - 2), out.signal);
-  if (!out.finished || out.bytes.empty()) throw InputError(place + crash_message(out.signal));
+  if (!out.finished || out.bytes.empty()) throw InputError(place + crash_message(program, out));
   if (out.bytes[0] == 'E') throw InputError(out.bytes.substr(1));
+  if (out.bytes[0] == 'V')
+    throw InputError(place + program + " is of another build (" + out.bytes.substr(1) + "; rccm " + mesh_bytes_protocol() +
+                     "): build both again, cmake --build build");
+  RCCM_VERIFY(out.bytes[0] == 'M', "rccm-gmsh's answer starts with M, E or V");
   return out.bytes.substr(1);
 }
 
 }  // namespace
 
 int read_gmsh_dimension(const MeshParams& p) {
-  return std::stoi(ask_gmsh(true, p, "", p.file + ": "));
+  const std::string dim = ask_gmsh(true, p, "", p.file + ": ");
+  RCCM_VERIFY(dim == "2" || dim == "3", "rccm-gmsh answers the dimension 2 or 3");
+  return dim[0] - '0';
 }
 
 Mesh read_gmsh(const MeshParams& p, const std::string& where) {

@@ -1,14 +1,18 @@
 // The gmsh mesh source (fem/gmsh_mesh): the same geometry from a .geo, MSH 2.2 and MSH 4.1
 // gives the same mesh; bodies, node sets, boundary facets and orientation follow from the
-// physical groups; a bad mesh file is refused naming the file and the physical group.
+// physical groups; a bad mesh file is refused naming the file and the physical group;
+// rccm-gmsh, which reads them, answers a caller of another build that it is one.
 #include "helpers.hpp"
+#include "rccm/base/child_process.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/fem/gmsh_mesh.hpp"
+#include "rccm/fem/mesh_bytes.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 using namespace rccm;
 namespace fs = std::filesystem;
@@ -194,4 +198,15 @@ Physical Surface("layer") = {1};
           "cannot report, most often a mesh size of 0 or below on a Point");
   refused(fixtures + "missing.msh", "cannot read the file");
   refused(fixtures + "../../config/b1.cfg", "a mesh file is a gmsh .msh or .geo file");
+}
+
+TEST_CASE("rccm-gmsh: a caller of another build is told so, not sent bytes it would misread", "[gmsh]") {
+  const std::string caller = std::to_string(::getpid());
+  const ChildOutcome other = run_program(RCCM_GMSH_PROGRAM, {"mesh", caller, "0.0.0/0", fixtures + "two_blocks.geo", "0", "w"});
+  CHECK(other.finished);
+  CHECK(other.bytes == "V" + mesh_bytes_protocol());
+  // The same build: the dimension of a 2D file.
+  const ChildOutcome same = run_program(RCCM_GMSH_PROGRAM, {"dimension", caller, mesh_bytes_protocol(), fixtures + "two_blocks.geo", "0", ""});
+  CHECK(same.finished);
+  CHECK(same.bytes == "M2");
 }

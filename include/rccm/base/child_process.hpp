@@ -11,16 +11,18 @@
 namespace rccm {
 
 /// How a child ended: `finished` (exit status 0) with what it wrote to its file descriptor 3
-/// in `bytes`, or not (then `bytes` may be cut short), ended by `signal` (0: it exited
-/// without an answer).
+/// in `bytes`, or not (then `bytes` may be cut short): ended by `signal`, or (signal 0)
+/// exited with `status`.
 struct ChildOutcome {
   bool finished = false;
   std::string bytes;
   int signal = 0;
+  int status = 0;
 };
 
-/// Runs `program` with `args` (argv[1] on), its stdin, stdout and stderr on /dev/null and its
-/// answer read from a pipe on its file descriptor 3, and waits for it. Throws
+/// Runs `program` with `args` (argv[1] on), its stdin, stdout and stderr on /dev/null, its
+/// answer read from a pipe on its file descriptor 3 and no other descriptor of the caller
+/// open, and waits for it. Throws
 /// std::runtime_error naming the program when it cannot be started.
 ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args);
 
