@@ -2,6 +2,7 @@
 
 #include "rccm/app/stop_request.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/fem/gmsh_mesh.hpp"
 #include "rccm/fem/mesh_source.hpp"
 #include "rccm/io/atomic_file.hpp"
 #include "rccm/io/checkpoint.hpp"
@@ -114,6 +115,7 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
       }
     cases = grown;
   }
+  const GmshReuse reuse;  // the cases' geometry read once when no case changes it
   for (SweepCase& c : cases) {
     c.overrides.insert(c.overrides.begin(), fixed.begin(), fixed.end());
     std::vector<std::string> all = c.overrides;
@@ -155,6 +157,7 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases) {
 }
 
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
+  std::optional<GmshReuse> reuse(std::in_place);  // a geometry the cases share meshed once
   for (SweepCase& c : cases) {  // before any case computes (see the header)
     if (c.status != CaseStatus::NotRun || c.config.mesh.file.empty() || stop_signal()) continue;  // kept: Complete
     try {
@@ -168,6 +171,7 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
       c.error = e.what();
     }
   }
+  reuse.reset();
   std::atomic<std::size_t> next{0};
   auto worker = [&]() {
     for (std::size_t k = next++; k < cases.size() && !stop_signal(); k = next++) {

@@ -8,11 +8,18 @@
 #include <csignal>
 #include <cstdio>
 #include <cstring>
+#include <map>
+#include <mutex>
+#include <optional>
 #include <unistd.h>
 
 namespace rccm {
 
 namespace {
+
+/// GmshReuse's answers by request, while one lives.
+std::mutex reuse_mutex;
+std::optional<std::map<std::string, std::string>> reused;
 
 /// rccm-gmsh: next to the running program (rccm), else where the build put it (the tests
 /// and the examples run from folders of their own).
@@ -54,6 +61,14 @@ std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string
     std::snprintf(number, sizeof number, "%.17g", value);
     args.push_back(name), args.push_back(number);
   }
+  // The request without its caller and its place in the config, and the file's contents.
+  std::string request = args[0] + '\n' + p.contents;
+  for (std::size_t k = 3; k < args.size(); ++k)
+    if (k != 5) request += '\n' + args[k];
+  {
+    const std::lock_guard<std::mutex> lock(reuse_mutex);
+    if (reused && reused->count(request)) return reused->at(request);
+  }
   ChildOutcome out;
   try {
     out = run_program(program, args);
@@ -70,6 +85,8 @@ std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string
     throw InputError(place + program + " is of another build (" + out.bytes.substr(1) + "; rccm " + mesh_bytes_protocol() +
                      "): build both again, cmake --build build");
   RCCM_VERIFY(out.bytes[0] == 'M', "rccm-gmsh's answer starts with M, E or V");
+  const std::lock_guard<std::mutex> lock(reuse_mutex);
+  if (reused) (*reused)[request] = out.bytes.substr(1);
   return out.bytes.substr(1);
 }
 
@@ -83,6 +100,17 @@ int read_gmsh_dimension(const MeshParams& p) {
 
 Mesh read_gmsh(const MeshParams& p, const std::string& where) {
   return unpack_mesh(ask_gmsh(false, p, where, where + ": " + p.file + ": "));
+}
+
+GmshReuse::GmshReuse() {
+  const std::lock_guard<std::mutex> lock(reuse_mutex);
+  RCCM_VERIFY(!reused, "one GmshReuse at a time");
+  reused.emplace();
+}
+
+GmshReuse::~GmshReuse() {
+  const std::lock_guard<std::mutex> lock(reuse_mutex);
+  reused.reset();
 }
 
 }  // namespace rccm

@@ -12,6 +12,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <unistd.h>
 
 using namespace rccm;
@@ -209,4 +210,31 @@ TEST_CASE("rccm-gmsh: a caller of another build is told so, not sent bytes it wo
   const ChildOutcome same = run_program(RCCM_GMSH_PROGRAM, {"dimension", caller, mesh_bytes_protocol(), fixtures + "two_blocks.geo", "0", ""});
   CHECK(same.finished);
   CHECK(same.bytes == "M2");
+}
+
+TEST_CASE("GmshReuse: the same file, refinement and parameters read once, others read again", "[gmsh]") {
+  const std::string file = geo("reused.geo", std::string(square) + "Physical Surface(\"plate\") = {1};\n");
+  MeshParams p;
+  p.file = file;
+  p.contents = "hash of the text";
+  std::optional<Mesh> first;
+  {
+    const GmshReuse reuse;
+    first = read_gmsh(p, "test.cfg:1: mesh.file");
+    CHECK(read_gmsh_dimension(p) == 2);
+    fs::remove(file);  // gone: only an answer kept can give the mesh again
+    const Mesh again = read_gmsh(p, "test.cfg:1: mesh.file");
+    CHECK(again.nodes == first->nodes);
+    CHECK(again.cells == first->cells);
+    CHECK(again.node_sets == first->node_sets);
+    CHECK(read_gmsh_dimension(p) == 2);
+    // Another refinement, or other contents of the file, is another request: gmsh is asked.
+    MeshParams refined = p, edited = p;
+    refined.refine = 1;
+    edited.contents = "another text";
+    CHECK_THROWS_WITH(read_gmsh(refined, "test.cfg:1: mesh.file"), Catch::Contains("cannot read the file"));
+    CHECK_THROWS_WITH(read_gmsh(edited, "test.cfg:1: mesh.file"), Catch::Contains("cannot read the file"));
+  }
+  // Without a GmshReuse nothing is kept.
+  CHECK_THROWS_WITH(read_gmsh(p, "test.cfg:1: mesh.file"), Catch::Contains("cannot read the file"));
 }

@@ -20,4 +20,16 @@ Mesh read_gmsh(const MeshParams& p, const std::string& where);
 /// meshing it. Throws InputError "<file>: ..." when gmsh cannot read it.
 int read_gmsh_dimension(const MeshParams& p);
 
+/// While one lives, what gmsh answered is kept and given again for the same file (the same
+/// contents), refinement and parameters, without starting gmsh: a sweep over other settings
+/// reads its geometry once (make_sweep_cases, run_sweep). One at a time; the reads may come
+/// from any thread.
+class GmshReuse {
+ public:
+  GmshReuse();
+  ~GmshReuse();
+  GmshReuse(const GmshReuse&) = delete;
+  GmshReuse& operator=(const GmshReuse&) = delete;
+};
+
 }  // namespace rccm
