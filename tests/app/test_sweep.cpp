@@ -264,8 +264,8 @@ TEST_CASE("a resumed sweep keeps its complete cases and restarts its stopped one
 }
 
 TEST_CASE("a sweep of a gmsh geometry on two threads reads the meshes first and more viscosity gives a higher peak", "[sweep]") {
-  // Two blocks glued along y = 2 (tests/meshes/two_blocks.geo) and pulled apart: gmsh runs in
-  // a forked process, so run_sweep reads both meshes before either case computes.
+  // Two blocks glued along y = 2 (tests/meshes/two_blocks.geo) and pulled apart: run_sweep
+  // reads the meshes (rccm-gmsh) before either case computes and hands them over.
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_gmsh";
   fs::remove_all(dir);
   const std::string text = "mesh = { file = \"" RCCM_SOURCE_DIR "/tests/meshes/two_blocks.geo\"; };\n"

@@ -13,7 +13,7 @@ namespace rccm {
 class Simulation {
  public:
   /// `mesh`: the mesh of cfg.mesh when it was made beforehand (a sweep reads its cases'
-  /// gmsh files before it runs them: fem/gmsh_mesh.hpp forks); else the run makes it.
+  /// gmsh files before it runs them, a geometry they share once); else the run makes it.
   Simulation(const Config& cfg, RunOptions options = {}, std::optional<Mesh> mesh = std::nullopt)
       : cfg_(cfg), options_(std::move(options)), mesh_(std::move(mesh)) {}
 

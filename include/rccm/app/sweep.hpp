@@ -58,9 +58,9 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases);
 
 /// Runs the cases on `jobs` threads, each writing into its directory (`force`: over earlier
 /// results), as their `start` says (a kept case is not run). The gmsh files are read first,
-/// one case after the other on the calling thread: gmsh runs in a forked process, and a fork
-/// while other cases compute can hang in OpenBLAS's fork handler (it joins its threads while
-/// another case's factorization uses them). A case whose mesh is refused is failed there. A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
+/// one case after the other on the calling thread, a geometry the cases share once
+/// (GmshReuse), and each case is handed its mesh: a case whose mesh is refused is failed
+/// before any case computes. A stop request (SIGINT, SIGTERM) stops the running cases at their next accepted
 /// step and starts no other: the cases not run keep the status NotRun.
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
