@@ -14,7 +14,9 @@
 #     sweep's overlay command names its own cases, its cases' notes their case;
 #  7. a second SIGINT exits at once;
 #  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it;
-#  9. started by a parent that ignores SIGCHLD, a gmsh config still gets its mesh.
+#  9. started by a parent that ignores SIGCHLD, a gmsh config still gets its mesh;
+# 10. SIGINT to a sweep alone (not its process group) while gmsh meshes its first case: gmsh
+#     is stopped with it, at once, not after its meshing.
 set -u
 rccm=$1; src=$2
 work=$(mktemp -d); trap 'umount "$work/full" 2>/dev/null; rm -rf "$work"' EXIT
@@ -192,6 +194,20 @@ check; [ "$rc" -eq 143 ] && [ -n "$gmsh_pid" ] && [ ! -e "$work/mesh" ] && [ -z 
 /usr/bin/python3 -c 'import os, signal, sys; signal.signal(signal.SIGCHLD, signal.SIG_IGN); os.execv(sys.argv[1], sys.argv[1:])' \
   "$rccm" run "$src/config/dcb.cfg" -q --set time.steps=4 --set "output.times=[0.5]" -o "$work/sigchld" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 0 ] && [ -s "$work/sigchld/curves.csv" ] || fail "SIGCHLD ignored by the caller: exit $rc, $(cat "$work/err")"
+
+# 10. SIGINT to the sweep alone while gmsh meshes a fine disc peel (tens of seconds of meshing).
+"$rccm" sweep "$src/config/disc-peel.cfg" --set mesh.parameters.h=0.1237,0.13 -j 2 -o "$work/sweep_mesh" >/dev/null 2>"$work/err" &
+pid=$!; gmsh_pid=
+for _ in $(seq 100); do gmsh_pid=$(pgrep -f "rccm-gmsh mesh $pid " | head -1); [ -n "$gmsh_pid" ] && break; sleep 0.05; done
+start=$(date +%s)
+kill -s INT "$pid"
+for _ in $(seq 150); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done
+kill -0 "$pid" 2>/dev/null && kill -9 "$pid"
+wait "$pid"; rc=$?
+check; [ "$rc" -eq 130 ] && [ -n "$gmsh_pid" ] && [ $(( $(date +%s) - start )) -lt 5 ] && ! kill -0 "$gmsh_pid" 2>/dev/null \
+  && grep -q '^h=0.1237,0.1237,interrupted' "$work/sweep_mesh/summary.csv" \
+  || fail "SIGINT to a sweep while gmsh meshes: exit $rc after $(( $(date +%s) - start )) s, gmsh '$gmsh_pid', $(cat "$work/err")"
+[ -n "$gmsh_pid" ] && kill -9 "$gmsh_pid" 2>/dev/null
 
 echo "$((checks - failed)) passed, $failed failed"
 [ "$failed" -eq 0 ]

@@ -1,5 +1,6 @@
 #include "rccm/app/stop_request.hpp"
 
+#include "rccm/base/child_process.hpp"
 #include "rccm/base/errors.hpp"
 
 #include <atomic>
@@ -44,6 +45,7 @@ extern "C" void on_signal(int signal) {
     std::_Exit(128 + signal);
   }
   requested = signal;
+  signal_children(signal);  // gmsh meshing for a sweep stops too, not after minutes
 }
 }  // namespace
 

@@ -1,10 +1,12 @@
 #include "rccm/base/child_process.hpp"
 
+#include <atomic>
 #include <cerrno>
 #include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <fcntl.h>
+#include <optional>
 #include <spawn.h>
 #include <stdexcept>
 #include <sys/prctl.h>
@@ -14,6 +16,41 @@
 extern char** environ;
 
 namespace rccm {
+
+namespace {
+
+/// The programs being waited for, for signal_children: a slot holds a pid from its start until
+/// just before it is reaped (so the pid cannot be another process's yet).
+std::atomic<pid_t> children[16];
+
+/// Holds `pid` in a free slot while it lives (none free: it is not signalled).
+class Registered {
+ public:
+  explicit Registered(pid_t pid) {
+    for (auto& c : children) {
+      pid_t free = 0;
+      if (c.compare_exchange_strong(free, pid)) {
+        slot_ = &c;
+        return;
+      }
+    }
+  }
+  ~Registered() {
+    if (slot_) slot_->store(0);
+  }
+  Registered(const Registered&) = delete;
+  Registered& operator=(const Registered&) = delete;
+
+ private:
+  std::atomic<pid_t>* slot_ = nullptr;
+};
+
+}  // namespace
+
+void signal_children(int signal) {
+  for (const auto& c : children)
+    if (const pid_t pid = c.load(); pid > 0) ::kill(pid, signal);
+}
 
 ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args) {
   int fds[2];
@@ -52,7 +89,9 @@ ChildOutcome run_program(const std::string& program, const std::vector<std::stri
     throw std::runtime_error("cannot start " + program + ": " + std::strerror(started));
   }
   ChildOutcome out;
-  const auto reap = [pid] {
+  std::optional<Registered> registered(std::in_place, pid);
+  const auto reap = [pid, &registered] {
+    registered.reset();
     int status = 0;
     pid_t r;
     while ((r = ::waitpid(pid, &status, 0)) < 0 && errno == EINTR) {

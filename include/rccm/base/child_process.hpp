@@ -26,6 +26,12 @@ struct ChildOutcome {
 /// std::runtime_error naming the program when it cannot be started.
 ChildOutcome run_program(const std::string& program, const std::vector<std::string>& args);
 
+/// Sends `signal` to the programs run_program is waiting for. Async-signal-safe: rccm's stop
+/// handler calls it, so that a stop asked of rccm alone (kill -INT PID, a scheduler's
+/// SIGTERM) ends gmsh's meshing too instead of waiting for it (Ctrl-C reaches the whole
+/// process group anyway).
+void signal_children(int signal);
+
 /// In the child: ends it (SIGKILL) when the caller ends, and makes it the first process the
 /// kernel stops when the memory runs out, not the caller. `caller` is the caller's process id
 /// as it passed it; false when the caller has already ended.
