@@ -73,7 +73,7 @@ namespace {
 /// A scale case: `cfg` run over [0, T] of its own loading (the load's time function keeps its
 /// absolute times, the steps their bound), no output times, the body solved by `linear`.
 BenchCase time_window(const std::string& name, Config cfg, double T, LinearSolver linear) {
-  cfg.integrator.max_step = cfg.integrator.max_step > 0 ? cfg.integrator.max_step : cfg.time.T / 50;
+  cfg.integrator.max_step = cfg.integrator.largest_step(cfg.time.T);
   cfg.time.T = T;
   cfg.output.times.clear();
   cfg.solver.linear.kind = linear;

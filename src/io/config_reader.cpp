@@ -796,7 +796,7 @@ void check_consistency(const Reader& r, const Setting& root, Config& c) {
   }
   const Setting* integrator = root.exists("integrator") ? &root["integrator"] : nullptr;
   const IntegratorParams& A = c.integrator;
-  const double max_step = A.max_step > 0 ? A.max_step : c.time.T / 50;  // ARKODE's, as the integrator sets it
+  const double max_step = A.largest_step(c.time.T);  // ARKODE's, as the integrator sets it
   if (A.min_step > max_step)
     r.fail((*integrator)["min_step"], "must not exceed integrator.max_step (" + csv_number(max_step) + " s" +
                                           (A.max_step > 0 ? "" : ", its default T/50") + ")");

@@ -62,7 +62,7 @@ struct ArkodeIntegrator::Impl {
     check(ARKStepSetUserData(mem, this), "ARKStepSetUserData");
     check(ARKStepSetErrHandlerFn(mem, error_handler, this), "ARKStepSetErrHandlerFn");
     check(ARKStepSStolerances(mem, p.rtol, p.atol), "ARKStepSStolerances");
-    check(ARKStepSetMaxStep(mem, p.max_step > 0 ? p.max_step : T / 50), "ARKStepSetMaxStep");
+    check(ARKStepSetMaxStep(mem, p.largest_step(T)), "ARKStepSetMaxStep");
     if (p.initial_step > 0) check(ARKStepSetInitStep(mem, p.initial_step), "ARKStepSetInitStep");
     if (p.fixed_step > 0) check(ARKStepSetFixedStep(mem, p.fixed_step), "ARKStepSetFixedStep");
     // A collapsing step (a nearly unrestrained body, a discontinuous f) fails instead of crawling.

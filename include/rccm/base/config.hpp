@@ -156,13 +156,15 @@ struct IntegratorParams {
   /// The DIRK scheme's default table (ARK4(3)6L's ESDIRK: docs/PERFORMANCE.md).
   static constexpr const char* default_dirk_table = "ARKODE_ARK436L2SA_DIRK_6_3_4";
   double rtol = 1e-6, atol = 1e-10;           // arkode tolerances (beta is dimensionless)
-  double max_step = 0.0;                      // s; 0: T / 50
+  double max_step = 0.0;                      // s; 0: T / 50 (largest_step)
   double initial_step = 0.0;                  // s; 0: ARKODE's estimate
   double fixed_step = 0.0;                    // s; > 0: no error control (order studies); 0: adaptive
   double min_step = 0.0;                      // s; 0: 1e-9 T (a smaller step fails the run)
   int max_steps = 200000;                     // accepted steps per output interval
   double fixed_point_tolerance = 1e-10;       // rate-independent: change of beta
   int fixed_point_iterations = 500;
+  /// The largest step ARKODE may take over [0, T]: max_step, or T / 50 by default.
+  double largest_step(double T) const { return max_step > 0 ? max_step : T / 50; }
 };
 
 /// A named point, in the mesh source's frame (mm): a watched point of the interface (the
