@@ -198,7 +198,7 @@ check; [ "$rc" -eq 0 ] && [ -s "$work/sigchld/curves.csv" ] || fail "SIGCHLD ign
 # 10. SIGINT to the sweep alone while gmsh meshes a fine disc peel (tens of seconds of meshing).
 "$rccm" sweep "$src/config/disc-peel.cfg" --set mesh.parameters.h=0.1237,0.13 -j 2 -o "$work/sweep_mesh" >/dev/null 2>"$work/err" &
 pid=$!; gmsh_pid=
-for _ in $(seq 100); do gmsh_pid=$(pgrep -f "rccm-gmsh mesh $pid " | head -1); [ -n "$gmsh_pid" ] && break; sleep 0.05; done
+for _ in $(seq 100); do gmsh_pid=$(pgrep -f "rccm-gmsh $pid .* mesh " | head -1); [ -n "$gmsh_pid" ] && break; sleep 0.05; done
 start=$(date +%s)
 kill -s INT "$pid"
 for _ in $(seq 150); do kill -0 "$pid" 2>/dev/null || break; sleep 0.1; done

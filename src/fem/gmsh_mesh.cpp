@@ -2,6 +2,7 @@
 
 #include "rccm/base/child_process.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/fem/gmsh_reader.hpp"
 #include "rccm/fem/mesh_bytes.hpp"
 
 #include <cerrno>
@@ -50,21 +51,19 @@ std::string crash_message(const std::string& program, const ChildOutcome& out) {
 
 /// Runs rccm-gmsh on `p` (gmsh_reader.hpp): an error gmsh throws from its threads, or memory
 /// the kernel takes back, ends that process, not the run. Returns its answer without the
-/// "M"; throws InputError "<place>..." on any error (`place`: the file, or the setting and
-/// the file).
-std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string& where, const std::string& place) {
-  const std::string program = gmsh_program();
-  std::vector<std::string> args{dimension_only ? "dimension" : "mesh", std::to_string(::getpid()), mesh_bytes_protocol(),
-                                p.file, std::to_string(p.refine), where};
+/// "M"; throws InputError "<place>..." on any error (gmsh_place).
+std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string& where) {
+  const std::string program = gmsh_program(), place = gmsh_place(dimension_only, p, where);
+  // The caller and the place in the config, then the request proper (gmsh_process_main.cpp).
+  std::vector<std::string> args{std::to_string(::getpid()), where, dimension_only ? "dimension" : "mesh",
+                                mesh_bytes_protocol(), p.file, std::to_string(p.refine)};
   for (const auto& [name, value] : p.parameters) {
     char number[32];
     std::snprintf(number, sizeof number, "%.17g", value);
     args.push_back(name), args.push_back(number);
   }
-  // The request without its caller and its place in the config, and the file's contents.
-  std::string request = args[0] + '\n' + p.contents;
-  for (std::size_t k = 3; k < args.size(); ++k)
-    if (k != 5) request += '\n' + args[k];
+  std::string request = p.contents;  // GmshReuse's key: the request proper and the file's contents
+  for (auto a = args.begin() + 2; a != args.end(); ++a) request += '\n' + *a;
   {
     const std::lock_guard<std::mutex> lock(reuse_mutex);
     if (reused && reused->count(request)) return reused->at(request);
@@ -93,13 +92,13 @@ std::string ask_gmsh(bool dimension_only, const MeshParams& p, const std::string
 }  // namespace
 
 int read_gmsh_dimension(const MeshParams& p) {
-  const std::string dim = ask_gmsh(true, p, "", p.file + ": ");
+  const std::string dim = ask_gmsh(true, p, "");
   RCCM_VERIFY(dim == "2" || dim == "3", "rccm-gmsh answers the dimension 2 or 3");
   return dim[0] - '0';
 }
 
 Mesh read_gmsh(const MeshParams& p, const std::string& where) {
-  return unpack_mesh(ask_gmsh(false, p, where, where + ": " + p.file + ": "));
+  return unpack_mesh(ask_gmsh(false, p, where));
 }
 
 GmshReuse::GmshReuse() {

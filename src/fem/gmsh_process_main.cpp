@@ -1,6 +1,6 @@
 // rccm-gmsh: reads or meshes one gmsh file for rccm (gmsh_mesh.cpp starts it) and writes its
 // answer (gmsh_reader.hpp) to file descriptor 3. Not meant to be run by hand.
-//   rccm-gmsh mesh|dimension CALLER_PID PROTOCOL FILE REFINE WHERE [PARAMETER VALUE]...
+//   rccm-gmsh CALLER_PID WHERE mesh|dimension PROTOCOL FILE REFINE [PARAMETER VALUE]...
 // PROTOCOL is the caller's mesh_bytes_protocol(): another answers "V" and its own.
 #include "rccm/base/child_process.hpp"
 #include "rccm/fem/gmsh_reader.hpp"
@@ -12,17 +12,17 @@
 #include <unistd.h>
 
 int main(int argc, char** argv) {
-  if (argc < 4 || !rccm::follow_caller(std::atol(argv[2]))) return 2;
-  const std::string kind = argv[1], protocol = rccm::mesh_bytes_protocol();
+  if (argc < 5 || !rccm::follow_caller(std::atol(argv[1]))) return 2;
+  const std::string kind = argv[3], protocol = rccm::mesh_bytes_protocol();
   std::string answer;
-  if (argv[3] != protocol || argc < 7 || (argc - 7) % 2 != 0 || (kind != "mesh" && kind != "dimension")) {
+  if (argv[4] != protocol || argc < 7 || (argc - 7) % 2 != 0 || (kind != "mesh" && kind != "dimension")) {
     answer = "V" + protocol;
   } else {
     rccm::MeshParams p;
-    p.file = argv[4];
-    p.refine = std::atoi(argv[5]);
+    p.file = argv[5];
+    p.refine = std::atoi(argv[6]);
     for (int a = 7; a < argc; a += 2) p.parameters[argv[a]] = std::strtod(argv[a + 1], nullptr);
-    answer = rccm::gmsh_answer(kind == "dimension", p, argv[6]);
+    answer = rccm::gmsh_answer(kind == "dimension", p, argv[2]);
   }
   for (std::size_t done = 0; done < answer.size();) {
     const ssize_t n = ::write(3, answer.data() + done, answer.size() - done);

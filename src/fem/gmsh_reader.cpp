@@ -421,9 +421,7 @@ class Reader {
 }  // namespace
 
 std::string gmsh_answer(bool dimension_only, const MeshParams& p, const std::string& where) {
-  // The place of gmsh's own errors: the file (the dimension, asked while the config is read),
-  // or the config's setting and the file.
-  const std::string place = dimension_only ? p.file + ": " : where + ": " + p.file + ": ";
+  const std::string place = gmsh_place(dimension_only, p, where);  // of gmsh's own errors
   limit_memory();
   start_gmsh();
   try {

@@ -203,11 +203,11 @@ Physical Surface("layer") = {1};
 
 TEST_CASE("rccm-gmsh: a caller of another build is told so, not sent bytes it would misread", "[gmsh]") {
   const std::string caller = std::to_string(::getpid());
-  const ChildOutcome other = run_program(RCCM_GMSH_PROGRAM, {"mesh", caller, "0.0.0/0", fixtures + "two_blocks.geo", "0", "w"});
+  const ChildOutcome other = run_program(RCCM_GMSH_PROGRAM, {caller, "w", "mesh", "0.0.0/0", fixtures + "two_blocks.geo", "0"});
   CHECK(other.finished);
   CHECK(other.bytes == "V" + mesh_bytes_protocol());
   // The same build: the dimension of a 2D file.
-  const ChildOutcome same = run_program(RCCM_GMSH_PROGRAM, {"dimension", caller, mesh_bytes_protocol(), fixtures + "two_blocks.geo", "0", ""});
+  const ChildOutcome same = run_program(RCCM_GMSH_PROGRAM, {caller, "", "dimension", mesh_bytes_protocol(), fixtures + "two_blocks.geo", "0"});
   CHECK(same.finished);
   CHECK(same.bytes == "M2");
 }

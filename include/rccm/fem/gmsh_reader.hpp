@@ -9,6 +9,12 @@
 
 namespace rccm {
 
+/// Where a message about reading `p` is placed: the file (the dimension, asked while the
+/// config is read), or the config's setting `where` and the file.
+inline std::string gmsh_place(bool dimension_only, const MeshParams& p, const std::string& where) {
+  return dimension_only ? p.file + ": " : where + ": " + p.file + ": ";
+}
+
 /// The answer to one request: "M" followed by the mesh of `p` (mesh_bytes.hpp), or by its
 /// dimension ("2" or "3") when `dimension_only` (the file read, not meshed); or "E" followed
 /// by the InputError message, placed at `where` and the file. Never throws.
