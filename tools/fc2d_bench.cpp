@@ -133,7 +133,7 @@ double compare(const std::string& name, const PlainContactProblem& p, const Cont
   // Siconos solves the plain form, springs folded in: (I - W0 E)^-1 W0, a dense solve of m
   // right-hand sides that our solvers do without (their springs stay in the local solve).
   // Where the problem has springs, building that form is part of solving it with Siconos.
-  if (!pb.D1.isZero(0.0)) {
+  if (!pb.Dref.isZero(0.0)) {
     PlainContactProblem built;
     const double form_seconds = seconds_per_call([&] { built = plain_form(pb); });
     row(name, pb.size(), "siconos+form", n.iterations, n.error, seconds + form_seconds,

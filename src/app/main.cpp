@@ -31,6 +31,9 @@ void print_totals(const rccm::RunResult& r) {
               "# wall %.3f s: setup %.4f s, %.1f us per contact solve\n",
               r.integrator.steps, r.integrator.rejected, r.solves.contact_solves, r.solves.sweeps_per_solve(),
               r.solves.max_sweeps, r.wall_seconds, r.setup_seconds, 1e6 * per_solve);
+  if (r.solves.condensations > 0)
+    std::printf("# K0 condensed anew %ld times as beta fell (%.3f s of the wall time)\n", r.solves.condensations,
+                r.solves.condense_seconds);
   for (const std::string& w : r.warnings) std::cerr << "rccm: warning: " << w << "\n";
 }
 

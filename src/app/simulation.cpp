@@ -12,7 +12,7 @@ namespace rccm {
 
 RunResult Simulation::run() {
   Recorder recorder(cfg_, options_);                  // the output directory checked, or the checkpoint read
-  const Model model(cfg_, mesh_ ? std::move(*mesh_) : make_mesh(cfg_));  // loads, body (K0 factorized), interface, W0
+  Model model(cfg_, mesh_ ? std::move(*mesh_) : make_mesh(cfg_));  // loads, body (K0 factorized), interface, W0
   mesh_.reset();
   writing_started();                                  // a signal from now on stops at an accepted step
   recorder.open(model);                               // result files, only now that the input is known good

@@ -76,6 +76,7 @@ std::string Config::fingerprint() const {
   // below), so that a failed run restarts with them changed (README "When a run fails").
   h("solver.local_iterations", solver.local_iterations);
   h("solver.rho", double(solver.rho))("solver.active_set", solver.active_set);
+  h("solver.springs_follow_beta", solver.springs_follow_beta);
   h("solver.active_set_max_nodes", solver.active_set_max_nodes)("solver.compressed_min_nodes", solver.compressed_min_nodes);
   // solver.linear is left out: the body's solver changes the results by round-off only, and a
   // run interrupted in one process may go on under mpirun.

@@ -10,7 +10,7 @@ namespace rccm {
 template <int dim>
 Eigen::VectorXd ActiveSetSystem<dim>::constraint_values(const ContactProblem& pb, const Pattern& pattern,
                                                         const Eigen::VectorXd& y, const Eigen::VectorXd& u) const {
-  const auto Rbar = [&](Eigen::Index c) { return y[c] - (pb.D1[c] - pb.Dbeta[c]) * u[c]; };
+  const auto Rbar = [&](Eigen::Index c) { return y[c] - (pb.Dref[c] - pb.Dbeta[c]) * u[c]; };
   Eigen::VectorXd v(y.size());
   for (int i = 0; i < pb.size(); ++i) {
     const Eigen::Index first = Eigen::Index(dim) * i, n = first + dim - 1;
@@ -47,7 +47,7 @@ Eigen::VectorXd ActiveSetSystem<dim>::residual(const ContactProblem& pb, const P
 template <int dim>
 void ActiveSetSystem<dim>::mixing(const ContactProblem& pb, const PairRows& kind, int i, Local& Cw, Local& Cy) const {
   const Eigen::Index first = Eigen::Index(dim) * i, n = dim - 1;
-  const auto E = [&](int k) { return pb.D1[first + k] - pb.Dbeta[first + k]; };
+  const auto E = [&](int k) { return pb.Dref[first + k] - pb.Dbeta[first + k]; };
   Cw.setZero(), Cy.setZero();
   switch (kind.status) {
     case Status::Separated:  // Rbar = y - E u
@@ -98,7 +98,7 @@ template <int dim>
 void ActiveSetSystem<dim>::record(const ContactProblem& pb, const Pattern& pattern, int i) {
   const Eigen::Index first = Eigen::Index(dim) * i;
   factorized_[i] = pattern[i];
-  E0_.template segment<dim>(first) = pb.D1.template segment<dim>(first) - pb.Dbeta.template segment<dim>(first);
+  E0_.template segment<dim>(first) = pb.Dref.template segment<dim>(first) - pb.Dbeta.template segment<dim>(first);
   mubar0_[i] = pb.mubar[i];
 }
 
@@ -109,7 +109,7 @@ bool ActiveSetSystem<dim>::rows_moved(const ContactProblem& pb, const PairRows& 
   bool spring = false;
   for (int k = 0; k < dim; ++k) {
     const Eigen::Index c = first + k;
-    spring = spring || std::abs(pb.D1[c] - pb.Dbeta[c] - E0_[c]) > tuning::row_drift * pb.D1[c];
+    spring = spring || std::abs(pb.Dref[c] - pb.Dbeta[c] - E0_[c]) > tuning::row_drift * pb.Dref[c];
   }
   return kind.status == Status::Separated ? spring : spring || std::abs(pb.mubar[i] - mubar0_[i]) > tuning::row_drift;
 }
@@ -205,7 +205,7 @@ void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pa
   inverse_ready_ = false;
   reuses_ = 0;
   factorized_ = pattern;
-  E0_ = pb.D1 - pb.Dbeta;
+  E0_ = pb.Dref - pb.Dbeta;
   mubar0_ = pb.mubar;
   D_.resize(0, m);
 }
@@ -254,6 +254,16 @@ bool ActiveSetSystem<dim>::refine(const ContactProblem& pb, const Pattern& patte
     }
   }
   return outcome == Outcome::Converged;
+}
+
+template <int dim>
+void ActiveSetSystem<dim>::forget() {
+  factorized_.clear();
+  mixed_.reset();
+  hodlr_.reset();
+  A0_.resize(0, 0);
+  A0_inverse_.resize(0, 0);
+  inverse_ready_ = false;
 }
 
 template <int dim>

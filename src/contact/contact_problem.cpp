@@ -28,7 +28,7 @@ ContactResiduals residuals(const ContactProblem& pb, const ContactSolution& s) {
   const double F = std::max({s.Rbar.cwiseAbs().maxCoeff(), r.cwiseAbs().maxCoeff(), 1e-300});
   const double U = std::max({s.u.cwiseAbs().maxCoeff(), pb.g0.cwiseAbs().maxCoeff(), 1e-300});
   ContactResiduals c;
-  const Eigen::VectorXd y = s.Rbar + (pb.D1 - pb.Dbeta).cwiseProduct(s.u);
+  const Eigen::VectorXd y = s.Rbar + (pb.Dref - pb.Dbeta).cwiseProduct(s.u);
   Eigen::VectorXd Wy(y.size());
   if (const Eigen::MatrixXd* W0 = pb.W0->dense())
     Wy.noalias() = *W0 * y;  // not by a compression the solver used: an independent check
@@ -58,7 +58,7 @@ PlainContactProblem plain_form(const ContactProblem& pb) {
   const Eigen::MatrixXd* W0 = pb.W0->dense();
   RCCM_VERIFY(W0 != nullptr, "the plain form needs a dense W0");
   const Eigen::Index m = W0->rows();
-  const Eigen::VectorXd E = pb.D1 - pb.Dbeta;
+  const Eigen::VectorXd E = pb.Dref - pb.Dbeta;
   const Eigen::PartialPivLU<Eigen::MatrixXd> A(Eigen::MatrixXd::Identity(m, m) - (*W0) * E.asDiagonal());
   const Eigen::MatrixXd W = A.solve(*W0);
   PlainContactProblem p{pb.layout.dim, std::make_shared<DenseDelassus>(0.5 * (W + W.transpose())), A.solve(pb.q0),
@@ -76,7 +76,7 @@ ContactProblem from_plain(const PlainContactProblem& plain) {
   pb.layout.dim = plain.dim;
   pb.W0 = plain.W.get();
   pb.q0 = plain.q;
-  pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(plain.dim * n);
+  pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(plain.dim * n);
   pb.mubar = plain.mu;
   pb.g0 = Eigen::VectorXd::Zero(n);
   pb.u_ref = Eigen::VectorXd::Zero(plain.dim * n);

@@ -122,7 +122,7 @@ class NewtonSolver::Iteration {
  public:
   Iteration(const ContactProblem& pb, const SolverParams& params, const Eigen::VectorXd& Rbar_start,
             const Eigen::VectorXd& u_start)
-      : pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), aug_(augmentations(blocks_)), E_(pb.D1 - pb.Dbeta) {
+      : pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), aug_(augmentations(blocks_)), E_(pb.Dref - pb.Dbeta) {
     const Eigen::Index m = pb.W0->size();
     // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
     s.y = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);

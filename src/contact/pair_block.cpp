@@ -29,7 +29,7 @@ std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) 
   for (int i = 0; i < pb.size(); ++i) {
     PairBlock<dim> b;  // default-initialized: every member is set below
     b.Wii = pb.W0->block(pb.layout.offset(i), dim);
-    b.E = pair<dim>(pb.D1, i) - pair<dim>(pb.Dbeta, i);
+    b.E = pair<dim>(pb.Dref, i) - pair<dim>(pb.Dbeta, i);
     b.shift = -pair<dim>(pb.u_ref, i);
     b.shift[dim - 1] = pb.g0[i];
     b.mubar = pb.mubar[i];

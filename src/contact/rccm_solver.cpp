@@ -51,7 +51,7 @@ class RccmSolver::Iteration {
  public:
   Iteration(const ContactProblem& pb, const SolverParams& params, const Eigen::MatrixXd& Kc, double Kc_norm,
             const Eigen::VectorXd& Rbar_start, const Eigen::VectorXd& u_start)
-      : pb_(pb), params_(params), Kc_(Kc), Kc_norm_(Kc_norm), E_(pb.D1 - pb.Dbeta),
+      : pb_(pb), params_(params), Kc_(Kc), Kc_norm_(Kc_norm), E_(pb.Dref - pb.Dbeta),
         blocks_(make_blocks<dim>(pb, params.rho)), free_(pb.W0->size()) {
     const Eigen::Index m = pb.W0->size();
     steps_.reserve(pb.size());

@@ -334,9 +334,4 @@ SparseMatrix Interface::springs(const Eigen::VectorXd& weight_t, const Eigen::Ve
   return SparseMatrix(P.transpose() * d.asDiagonal() * P);
 }
 
-SparseMatrix Interface::initial_springs() const {
-  const Eigen::VectorXd one = Eigen::VectorXd::Ones(size());
-  return springs(one, one);
-}
-
 }  // namespace rccm

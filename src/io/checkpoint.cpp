@@ -16,7 +16,7 @@ namespace {
 
 // 2: no step records (history.csv holds them); 3: contact_nodes; 4: the settings fingerprint
 // without the numerical controls (a failed run restarts with them changed)
-const char* const magic = "rccm-checkpoint-4";
+const char* const magic = "rccm-checkpoint-5";
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
 class RecordWriter {
@@ -130,13 +130,15 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
   w.vector("u", c.state.u);
   w.vector("y", c.state.y);
   w.vector("status", status_vector(c.state.status));
+  w.vector("springs_beta", c.springs_beta);
   const EnergyTerms& e = c.energy;
   w.vector("energy", Eigen::Vector<double, 6>(e.external_work, e.strain_energy, e.free_energy_change,
                                               e.damage_dissipation, e.friction_dissipation, e.normal_contact_work));
   w.vector("peak_force", Eigen::Map<const Eigen::VectorXd>(p.peak_force.data(), Eigen::Index(p.peak_force.size())));
   w.vector("peak_time", Eigen::Map<const Eigen::VectorXd>(p.peak_time.data(), Eigen::Index(p.peak_time.size())));
-  w.vector("solves", Eigen::Vector4d(double(p.solves.contact_solves), double(p.solves.sweeps), p.solves.max_sweeps,
-                                     p.solves.seconds));
+  w.vector("solves", Eigen::Vector<double, 6>(double(p.solves.contact_solves), double(p.solves.sweeps),
+                                              p.solves.max_sweeps, p.solves.seconds, double(p.solves.condensations),
+                                              p.solves.condense_seconds));
   const IntegratorStats& I = p.integrator;
   w.vector("integrator", Eigen::Vector4d(double(I.steps), double(I.rejected), double(I.rhs_evaluations),
                                          double(I.newton_iterations)));
@@ -200,6 +202,10 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
     c.state.status.push_back(static_cast<Status>(int(s)));
   }
   r.check(long(c.state.status.size()) == m, "status must have one entry per contact node");
+  c.springs_beta = r.vector("springs_beta");  // set at an earlier beta, which only falls
+  r.check(c.springs_beta.size() == m && finite(c.springs_beta) && (c.springs_beta.array() >= c.state.beta.array()).all() &&
+              c.springs_beta.maxCoeff() <= 1,
+          "springs_beta must be in [beta, 1], one per contact node");
   const Eigen::VectorXd e = r.vector("energy");
   r.check(e.size() == 6 && finite(e), "energy must be 6 finite terms");
   c.energy = {e[0], e[1], e[2], e[3], e[4], e[5]};
@@ -211,10 +217,10 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   p.peak_force.assign(peak_force.begin(), peak_force.end());
   p.peak_time.assign(peak_time.begin(), peak_time.end());
   const Eigen::VectorXd solves = r.vector("solves"), integrator = r.vector("integrator");
-  r.check(solves.size() == 4 && integrator.size() == 4 && finite(solves) && finite(integrator) &&
+  r.check(solves.size() == 6 && integrator.size() == 4 && finite(solves) && finite(integrator) &&
               solves.minCoeff() >= 0 && integrator.minCoeff() >= 0,
-          "4 solve and 4 integrator counts, none negative");
-  p.solves = {long(solves[0]), long(solves[1]), int(solves[2]), solves[3]};
+          "6 solve and 4 integrator counts, none negative");
+  p.solves = {long(solves[0]), long(solves[1]), int(solves[2]), solves[3], long(solves[4]), solves[5]};
   p.integrator = {long(integrator[0]), long(integrator[1]), long(integrator[2]), long(integrator[3])};
   for (long k = r.count("snapshots", 1e6); k > 0; --k) {
     Snapshot s;

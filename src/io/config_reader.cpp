@@ -669,10 +669,13 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   // The exact step in 3D rebuilds its dense (3n)^2 system whenever slip directions turn:
   // sweeps alone by default there (README "3D", measured 8x faster on the corner peel).
   S.active_set = dim == 2;
+  // The sweeps alone (3D) need 2-3 times fewer passes late in a peel once K0's springs follow
+  // the damage (docs/PERFORMANCE.md); the 2D exact step does not need it.
+  S.springs_follow_beta = dim == 3;
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
   r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "anderson", "rho", "relaxation",
-              "active_set", "active_set_max_nodes", "compressed_min_nodes", "linear", "linear_tolerance"});
+              "active_set", "active_set_max_nodes", "compressed_min_nodes", "springs_follow_beta", "linear", "linear_tolerance"});
   S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
   S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
   if (s->exists("over_relaxation"))
@@ -693,6 +696,7 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   if (s->exists("relaxation"))
     r.check(S.relaxation > 0 && S.relaxation <= 1, (*s)["relaxation"], "must be in (0, 1]", S.relaxation);
   S.active_set = r.boolean(*s, "active_set", S.active_set);
+  S.springs_follow_beta = r.boolean(*s, "springs_follow_beta", S.springs_follow_beta);
   S.active_set_max_nodes = r.integer(*s, "active_set_max_nodes", S.active_set_max_nodes);
   if (s->exists("active_set_max_nodes"))
     r.check(S.active_set_max_nodes >= 0, (*s)["active_set_max_nodes"], "must be >= 0", S.active_set_max_nodes);

@@ -100,7 +100,7 @@ void Recorder::start(BetaOde& ode) {
   }
   const InterfaceState initial = InterfaceState::initial(*model_);
   energy_ = std::make_unique<EnergyBalance>(*model_, initial, body_state(*model_, initial), rate_independent());
-  ode.resume(resume_->state, resume_->step, resume_->progress.solves, resume_->excursion);
+  ode.resume(resume_->state, resume_->step, resume_->progress.solves, resume_->excursion, resume_->springs_beta);
   body_ = body_state(*model_, resume_->state);
   energy_->resume(resume_->state, body_, resume_->energy);
   const RunResult& p = resume_->progress;
@@ -168,7 +168,8 @@ void Recorder::say_note(const std::string& text, const char* lead) const {
 
 void Recorder::save_checkpoint() {
   Checkpoint c{cfg_.settings,           ode_->steps(),              integrator_->last_step(), ode_->committed(),
-               energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}, {}};
+               energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}, {},
+               model_->springs_beta()};
   c.progress.snapshots = result_.snapshots;
   c.progress.peak_force = result_.peak_force;
   c.progress.peak_time = result_.peak_time;

@@ -85,6 +85,9 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "  contact solves          " << r.solves.contact_solves << "\n"
       << "  contact iterations      " << fmt("%.2f", double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves))
       << " per solve, max " << r.solves.max_sweeps << "\n"
+      << (cfg.solver.springs_follow_beta ? "  K0 condensed anew       " + std::to_string(r.solves.condensations) + " times (" +
+                                               fmt("%.3f", r.solves.condense_seconds) + " s; solver.springs_follow_beta)\n"
+                                         : std::string())
       << "  wall time               " << fmt("%.3f", r.wall_seconds) << " s (setup " << fmt("%.4f", r.setup_seconds)
       << " s)" << (r.restarted_at >= 0 ? " since the restart at t = " + fmt("%g", r.restarted_at) + " s" : "") << "\n";
 
@@ -156,6 +159,8 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"contact_solves", r.solves.contact_solves},
                        {"sweeps_per_solve", r.solves.sweeps_per_solve()},
                        {"sweeps_max", r.solves.max_sweeps},
+                       {"condensations", r.solves.condensations},
+                       {"condense_seconds", r.solves.condense_seconds},
                        {"wall_seconds", r.wall_seconds},
                        {"restarted_at", r.restarted_at},
                        {"setup_seconds", r.setup_seconds},

@@ -3,6 +3,7 @@
 #include "rccm/base/errors.hpp"
 #include "rccm/base/memory.hpp"
 #include "rccm/base/suggest.hpp"
+#include "rccm/contact/solver_tuning.hpp"
 #include "rccm/fem/elasticity.hpp"
 
 #include <algorithm>
@@ -103,12 +104,12 @@ Model::Model(const Config& cfg, Mesh mesh)
   // and the 3D Newton step read W0 dense); otherwise dense, with the factor block it comes from,
   // and below solver.compressed_min_nodes the exact step's matrix, its LU and its inverse,
   // each (dim m)^2 doubles.
-  const bool compress = interface_.size() >= cfg.solver.compressed_min_nodes &&
+  compress_W0_ = interface_.size() >= cfg.solver.compressed_min_nodes &&
                         (cfg.solver.method == ContactMethod::Bipotential ||
                          (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2));
   const double m = interface_.layout.offset(interface_.size());
   const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes;
-  if (!compress)
+  if (!compress_W0_)
     require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
                    std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
                    "use a coarser interface mesh, solver.compressed_min_nodes below the contact node count, or "
@@ -122,19 +123,19 @@ Model::Model(const Config& cfg, Mesh mesh)
   check_prescribed_gaps(cfg);
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);
-  std::vector<int> interface_dofs;  // ordered last in the factor, for the dense W0
-  if (!compress)
+  if (!compress_W0_)
     for (const ContactPair& c : interface_.pairs)
       for (int node : {c.node, c.opposite})
-        for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs.push_back(mesh_.dof(node, x));
+        for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs_.push_back(mesh_.dof(node, x));
+  follow_beta_ = cfg.solver.springs_follow_beta;
+  linear_ = cfg.solver.linear;
+  D1_ = interface_.spring_stiffness();
+  springs_beta_ = Eigen::VectorXd::Ones(interface_.size());
   try {
-    body_ = std::make_unique<ElasticProblem>(K_, interface_.initial_springs(), supports_, interface_dofs,
-                                             cfg.solver.linear);
+    factorize_and_condense();
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }
-  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress);
-  D1_ = interface_.spring_stiffness();
   g0_.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) g0_[i] = interface_.pairs[i].g0;
   double a_max = 0;
@@ -145,6 +146,36 @@ Model::Model(const Config& cfg, Mesh mesh)
                      "contact node; give a point on the interface");
   probes_ = nearest(cfg, mesh_, cfg.output.probes, "probes", all_nodes, largest_cell(mesh_),
                     "node, more than a cell; give a point in a body");
+}
+
+namespace {
+/// The weight of a pair's springs in K0 when they are set at beta: beta^2, at least the floor.
+double springs_weight(double beta) { return std::max(beta * beta, tuning::springs_floor); }
+}  // namespace
+
+void Model::factorize_and_condense() {
+  const Eigen::VectorXd w = springs_beta_.unaryExpr(&springs_weight);
+  condensation_.reset();  // it refers to the body it replaces (and both to the memory of the new ones)
+  body_.reset();
+  body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
+  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress_W0_);
+  Dref_ = D1_;
+  const Layout& L = interface_.layout;
+  for (int i = 0; i < interface_.size(); ++i) L.local(Dref_, i) *= w[i];
+}
+
+void Model::condense(const Eigen::VectorXd& beta) {
+  RCCM_VERIFY(beta.size() == interface_.size(), "one beta per contact pair");
+  springs_beta_ = beta;
+  factorize_and_condense();
+}
+
+bool Model::springs_lag(const Eigen::VectorXd& beta) const {
+  if (!follow_beta_) return false;
+  int lagging = 0;
+  for (int i = 0; i < interface_.size(); ++i)
+    lagging += springs_weight(beta[i]) * tuning::springs_lag_ratio < springs_weight(springs_beta_[i]);
+  return lagging > 0 && lagging >= tuning::springs_lag_fraction * interface_.size();
 }
 
 void Model::check_prescribed_gaps(const Config& cfg) const {
@@ -229,7 +260,7 @@ ContactProblem Model::contact_problem(double t, const Eigen::VectorXd& beta, con
   pb.layout = L;
   pb.W0 = &condensation_->W0();
   pb.q0 = condensation_->q0(t);
-  pb.D1 = D1_;
+  pb.Dref = Dref_;
   pb.Dbeta.resize(D1_.size());
   pb.mubar.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) {

@@ -22,7 +22,7 @@ void SolveCounts::add(const ContactSolution& s, double solve_seconds) {
   max_sweeps = std::max(max_sweeps, s.iterations);
 }
 
-BetaOde::BetaOde(const Model& model, std::unique_ptr<ContactSolver> solver, Observer observer)
+BetaOde::BetaOde(Model& model, std::unique_ptr<ContactSolver> solver, Observer observer)
     : model_(model),
       solver_(std::move(solver)),
       observer_(std::move(observer)),
@@ -93,9 +93,11 @@ void BetaOde::rate_independent_beta(double t, const Eigen::VectorXd& beta, Eigen
     out[i] = I.law(i).rate_independent_beta(committed_.beta[i], I.layout.local(s.u, i));  // docs/MODEL.md s3
 }
 
-void BetaOde::resume(const InterfaceState& state, int step, const SolveCounts& totals, const Excursion& excursion) {
-  RCCM_VERIFY(state.beta.size() == size(), "checkpoint of another interface");
+void BetaOde::resume(const InterfaceState& state, int step, const SolveCounts& totals, const Excursion& excursion,
+                     const Eigen::VectorXd& springs_beta) {
+  RCCM_VERIFY(state.beta.size() == size() && springs_beta.size() == size(), "checkpoint of another interface");
   committed_ = state;
+  if (springs_beta != model_.springs_beta()) model_.condense(springs_beta);  // the checkpoint's y is of these springs
   step_ = step;
   totals_ = totals;
   excursion_ = excursion;
@@ -147,12 +149,29 @@ void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
   if (with_midpoint) midpoint_ = midpoint(t, beta, s);
   committed_.commit(t, beta, s);
   ++step_;
+  // Before the observer: the states it records are split for the K0 the run goes on with.
+  if (model_.springs_lag(committed_.beta)) condense(committed_.beta);  // docs/MODEL.md s4
   const double clock = now();
   const AcceptedStep step{step_,       t, t - t_old, committed_, s, r, step_counts_, clock - step_start_,
                           with_midpoint ? &midpoint_ : nullptr};
   step_counts_ = SolveCounts{};
   step_start_ = clock;
   if (observer_) observer_(step);
+}
+
+void BetaOde::condense(const Eigen::VectorXd& springs_beta) {
+  const double start = now();
+  model_.condense(springs_beta);
+  for (InterfaceState* s : {&committed_, &midpoint_}) {
+    if (s->beta.size() == 0) continue;  // no midpoint tracked
+    const ContactProblem pb = model_.contact_problem(s->t, s->beta, s->u);
+    s->y = s->Rbar + (pb.Dref - pb.Dbeta).cwiseProduct(s->u);  // docs/MODEL.md s4
+  }
+  last_t_ = -1;
+  solver_->forget_W0();
+  if (midpoint_solver_) midpoint_solver_->forget_W0();
+  ++totals_.condensations;
+  totals_.condense_seconds += now() - start;
 }
 
 }  // namespace rccm

@@ -130,7 +130,7 @@ interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.2; };
 loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = 0.1; } );
 time = { T = 1.0; };
 )");
-  const Model model = test::make_model(cfg);
+  Model model = test::make_model(cfg);
   BetaOde ode(model, make_contact_solver(cfg.solver));
   Eigen::VectorXd beta = model.initial_beta(), f(ode.size());
   ode.accept(0.0, beta);

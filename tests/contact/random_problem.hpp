@@ -19,8 +19,8 @@ namespace rccm::testing {
 /// contact, three times as much shear (most pairs slide), mubar up to 1.
 enum class Family { Mild, Hard };
 
-/// A random condensed problem of n pairs of `dim` components, without or with springs D1
-/// folded into W0 = (W^-1 + D1)^-1 and D(beta) <= D1.
+/// A random condensed problem of n pairs of `dim` components, without or with springs Dref
+/// folded into W0 = (W^-1 + Dref)^-1 and D(beta) <= Dref.
 struct RandomProblem {
   RandomProblem(int n, int dim, Family family, bool springs, std::mt19937& gen) {
     std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
@@ -38,14 +38,14 @@ struct RandomProblem {
     pb.mubar = Eigen::VectorXd::NullaryExpr(n, [&]() { return (hard ? 1.0 : 0.4) * P(gen); });
     pb.g0 = Eigen::VectorXd::Zero(n);
     pb.u_ref = Eigen::VectorXd::NullaryExpr(m, [&]() { return 0.1 * U(gen); });
-    pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(m);
+    pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(m);
     if (springs) {
-      pb.D1 = Eigen::VectorXd::NullaryExpr(m, [&]() { return 2.0 * P(gen); });
+      pb.Dref = Eigen::VectorXd::NullaryExpr(m, [&]() { return 2.0 * P(gen); });
       for (int i = 0; i < n; ++i) {
         const double beta = P(gen);
-        pb.Dbeta.segment(dim * i, dim) = beta * beta * pb.D1.segment(dim * i, dim);
+        pb.Dbeta.segment(dim * i, dim) = beta * beta * pb.Dref.segment(dim * i, dim);
       }
-      Wd = (Wd.inverse() + Eigen::MatrixXd(pb.D1.asDiagonal())).inverse();
+      Wd = (Wd.inverse() + Eigen::MatrixXd(pb.Dref.asDiagonal())).inverse();
       Wd = 0.5 * (Wd + Wd.transpose()).eval();
     }
     W = DenseDelassus(Wd);
@@ -59,20 +59,20 @@ struct RandomProblem {
 };
 
 /// One step of the drift between two solves of a run (as between the integrator's stages):
-/// the load q0 by up to 0.05, each spring D(beta) by up to 2 % (within [0, D1]), mubar up
+/// the load q0 by up to 0.05, each spring D(beta) by up to 2 % (within [0, Dref]), mubar up
 /// by 0.005 (at most mubar_max).
 inline void drift(ContactProblem& pb, double mubar_max, std::mt19937& gen) {
   std::uniform_real_distribution<double> U(-1, 1);
   pb.q0 += 0.05 * Eigen::VectorXd::NullaryExpr(pb.q0.size(), [&]() { return U(gen); });
   for (Eigen::Index c = 0; c < pb.Dbeta.size(); ++c)
-    pb.Dbeta[c] = std::clamp(pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, pb.D1[c]);
+    pb.Dbeta[c] = std::clamp(pb.Dbeta[c] * (1 + 0.02 * U(gen)), 0.0, pb.Dref[c]);
   pb.mubar = (pb.mubar.array() + 0.005).min(mubar_max);
 }
 
 /// The solution satisfies the condensed equations u = W0 (Rbar + E u) + q0 and the law
 /// (Signorini, Coulomb, complementarity: relative residuals).
 inline void require_solution(const ContactProblem& pb, const ContactSolution& s) {
-  const Eigen::VectorXd y = s.Rbar + (pb.D1 - pb.Dbeta).cwiseProduct(s.u);
+  const Eigen::VectorXd y = s.Rbar + (pb.Dref - pb.Dbeta).cwiseProduct(s.u);
   Eigen::VectorXd Wy(y.size());
   pb.W0->multiply(y, Wy);
   REQUIRE((Wy + pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));

@@ -53,7 +53,7 @@ TEST_CASE("random problems: Signorini and Coulomb hold, both forms agree", "[sol
       REQUIRE(ja.converged);
       for (const ContactSolution* s : {&gs, &gs_plain, &ja}) {
         // The solution is consistent with the condensed equations ...
-        const Eigen::VectorXd y = s->Rbar + (rp.pb.D1 - rp.pb.Dbeta).cwiseProduct(s->u);
+        const Eigen::VectorXd y = s->Rbar + (rp.pb.Dref - rp.pb.Dbeta).cwiseProduct(s->u);
         REQUIRE((rp.matrix() * y + rp.pb.q0 - s->u).norm() <= 1e-10 * (1 + s->u.norm()));
         // ... and with the law.
         const ContactResiduals r = residuals(rp.pb, *s);
@@ -85,7 +85,7 @@ TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain
       INFO("trial " << trial << " step " << step);
       REQUIRE(s.converged);
       REQUIRE(reference.converged);
-      const Eigen::VectorXd y = s.Rbar + (rp.pb.D1 - rp.pb.Dbeta).cwiseProduct(s.u);
+      const Eigen::VectorXd y = s.Rbar + (rp.pb.Dref - rp.pb.Dbeta).cwiseProduct(s.u);
       REQUIRE((rp.matrix() * y + rp.pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));
       REQUIRE(residuals(rp.pb, s).max() <= 1e-8);
       REQUIRE((s.Rbar - reference.Rbar).norm() <= 1e-8 * (1 + reference.Rbar.norm()));
@@ -195,7 +195,7 @@ TEST_CASE("a single free node is solved exactly in each regime", "[solver]") {
   pb.W0 = &W;
   pb.mubar = Eigen::VectorXd::Constant(1, 0.5);
   pb.g0 = Eigen::VectorXd::Zero(1);
-  pb.u_ref = pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(2);
+  pb.u_ref = pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(2);
   BipotentialSolver solver(params(SweepForm::GaussSeidel, true));
   SECTION("opening: no force") {
     pb.q0 = Eigen::Vector2d(0.3, 1.0);
@@ -230,9 +230,9 @@ TEST_CASE("a solver reused along a sequence of problems (cached active-set facto
   ContactSolution previous;
   for (int k = 0; k < 60; ++k) {
     for (int i = 0; i < rp.pb.size(); ++i) {
-      const double beta = std::sqrt(rp.pb.Dbeta[2 * i] / rp.pb.D1[2 * i]);
+      const double beta = std::sqrt(rp.pb.Dbeta[2 * i] / rp.pb.Dref[2 * i]);
       const double next = std::clamp(beta * (1 - 0.05 * std::abs(U(gen))), 0.0, 1.0);
-      rp.pb.Dbeta.segment<2>(2 * i) = next * next * rp.pb.D1.segment<2>(2 * i);
+      rp.pb.Dbeta.segment<2>(2 * i) = next * next * rp.pb.Dref.segment<2>(2 * i);
       rp.pb.mubar[i] = 0.4 * (1 - next);
     }
     rp.pb.q0 += 0.1 * Eigen::VectorXd::NullaryExpr(rp.pb.q0.size(), [&]() { return U(gen); });
@@ -285,7 +285,7 @@ TEST_CASE("a solve stopped by solver.max_iterations leaves a consistent state fo
       REQUIRE_FALSE(s.converged);
       CHECK(s.residual > p.tolerance);
       CHECK(s.worst_node >= 0);
-      const Eigen::VectorXd E = rp.pb.D1 - rp.pb.Dbeta;
+      const Eigen::VectorXd E = rp.pb.Dref - rp.pb.Dbeta;
       CHECK((rp.matrix() * s.y + rp.pb.q0 - s.u).norm() <= 1e-10 * (1 + s.u.norm()));
       CHECK((s.y - E.cwiseProduct(s.u) - s.Rbar).norm() <= 1e-12 * (1 + s.y.norm()));
     }
@@ -340,7 +340,7 @@ TEST_CASE("the sweeps' tolerance is relative to the largest force, the adhesive 
   pb.W0 = &W0;
   pb.q0 = Eigen::VectorXd::Zero(6);
   pb.q0 << 0, 1.0, 0, -8.5e-7, 0, -8.5e-7;
-  pb.D1 = pb.Dbeta = Eigen::VectorXd::Constant(6, 1e6);  // beta = 1: E = 0, the springs in W0
+  pb.Dref = pb.Dbeta = Eigen::VectorXd::Constant(6, 1e6);  // beta = 1: E = 0, the springs in W0
   pb.u_ref = Eigen::VectorXd::Zero(6);
   pb.mubar = pb.g0 = Eigen::VectorXd::Zero(3);
   SolverParams p = plain_sweeps();

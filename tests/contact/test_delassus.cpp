@@ -126,10 +126,10 @@ TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the d
     pb.mubar = Eigen::VectorXd::NullaryExpr(n, [&]() { return 0.6 * P(gen); });
     pb.g0 = Eigen::VectorXd::Zero(n);
     pb.u_ref = Eigen::VectorXd::NullaryExpr(m, [&]() { return 0.05 * U(gen); });
-    pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(m);
-    if (springs) {  // springs softer than W0's pairs (I - W0_ii E invertible), D(beta) <= D1
+    pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(m);
+    if (springs) {  // springs softer than W0's pairs (I - W0_ii E invertible), D(beta) <= Dref
       const double k = 0.2 / sparse.diagonal_scale();
-      pb.D1 = Eigen::VectorXd::Constant(m, k);
+      pb.Dref = Eigen::VectorXd::Constant(m, k);
       for (int i = 0; i < n; ++i) pb.Dbeta.segment(2 * i, 2).setConstant(k * P(gen));
     }
     SolverParams params;
@@ -159,7 +159,7 @@ TEST_CASE("rccm and newton need the dense W0 and say so", "[delassus]") {
   pb.q0 = -Eigen::VectorXd::Ones(20);
   pb.mubar = Eigen::VectorXd::Constant(10, 0.3);
   pb.g0 = Eigen::VectorXd::Zero(10);
-  pb.u_ref = pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(20);
+  pb.u_ref = pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(20);
   for (ContactMethod method : {ContactMethod::Rccm, ContactMethod::Newton}) {
     SolverParams params;
     params.method = method;

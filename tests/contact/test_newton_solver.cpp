@@ -167,7 +167,7 @@ TEST_CASE("a single free node is solved exactly in each regime, 2D and 3D", "[ne
     pb.W0 = &W;
     pb.mubar = Eigen::VectorXd::Constant(1, 0.5);
     pb.g0 = Eigen::VectorXd::Zero(1);
-    pb.u_ref = pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(dim);
+    pb.u_ref = pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(dim);
     const auto solve = [&](const Eigen::VectorXd& q) {
       pb.q0 = q;
       return NewtonSolver(params()).solve(pb, {}, {});

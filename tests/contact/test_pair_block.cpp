@@ -90,9 +90,9 @@ TEST_CASE("a pair whose spring cancels its flexibility (det(I - W_ii E) = 0) is 
   pb.layout = Layout{2};
   pb.W0 = &W0;
   pb.q0 = pb.Dbeta = pb.u_ref = Eigen::VectorXd::Zero(6);
-  pb.D1 = Eigen::VectorXd::Constant(6, 0.1);
-  pb.D1[3] = 1.0 / W(3, 3);
-  pb.D1[2] = 0;
+  pb.Dref = Eigen::VectorXd::Constant(6, 0.1);
+  pb.Dref[3] = 1.0 / W(3, 3);
+  pb.Dref[2] = 0;
   pb.mubar = pb.g0 = Eigen::VectorXd::Zero(3);
   try {
     make_blocks<2>(pb, RhoRule::Eigen);

@@ -90,7 +90,7 @@ TEST_CASE("rccm: a single free node in each regime: the friction threshold comes
   pb.W0 = &W;
   pb.mubar = Eigen::VectorXd::Constant(1, 0.5);
   pb.g0 = Eigen::VectorXd::Zero(1);
-  pb.u_ref = pb.D1 = pb.Dbeta = Eigen::VectorXd::Zero(2);
+  pb.u_ref = pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(2);
   RccmSolver solver(params());
   SECTION("opening: no force") {
     pb.q0 = Eigen::Vector2d(0.3, 1.0);

@@ -56,7 +56,9 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
   // Fixed steps: the same steps, so the same results to the contact solver's round-off.
   // ARKODE: restarted with its last step size, it takes its own steps after the checkpoint,
   // so the results agree to its global error (rtol 1e-8: ~4e-6 in beta at the front node).
+  // With K0's springs following beta, the restart condenses with the checkpoint's springs.
   const Case cases[] = {{{"integrator.method=\"euler\"", "time.steps=300"}, 170, 1e-9},
+                        {{"integrator.method=\"euler\"", "time.steps=300", "solver.springs_follow_beta=true"}, 170, 1e-9},
                         {{"integrator.rtol=1e-8", "time.T=6.0"}, 400, 1e-5}};
   for (const Case& c : cases) {
     const std::string whole = fs::temp_directory_path() / "rccm_restart_whole";
@@ -68,6 +70,8 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     request_stop(0);
     const Checkpoint ck = read_checkpoint(parts, b1(parts, c.settings));
     CHECK(ck.step == c.stop_at);
+    const bool follow = c.settings.back() == "solver.springs_follow_beta=true";
+    CHECK((ck.springs_beta.minCoeff() < 1) == follow);  // condensed anew before the stop
     // The stopped run's report counts the steps its files hold: history.csv's rows after t = 0.
     CHECK_THAT(test::read_text(parts + "/report.txt"), Catch::Contains("accepted steps          " + std::to_string(c.stop_at) + " ("));
     CHECK(lines(parts + "/history.csv") == std::size_t(c.stop_at) + 2);
@@ -177,6 +181,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   c.diagnostics = {44.95, 7};
   c.excursion = {0.25, 0.6, 2};
   c.contact_nodes = {7, 3, 100000, 0, 5};
+  c.springs_beta = (c.state.beta + Eigen::VectorXd::Constant(5, 1.0 / 3)).cwiseMin(1.0);
   c.progress.peak_force = {203.51};
   c.progress.peak_time = {0.3};
   c.progress.solves = {35443, 87000, 7, 1.25};
@@ -200,6 +205,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   CHECK(r.excursion.size == 0.25);
   CHECK(r.excursion.node == 2);
   CHECK(r.contact_nodes == c.contact_nodes);
+  CHECK(r.springs_beta == c.springs_beta);
   CHECK(r.progress.peak_force == c.progress.peak_force);
   CHECK(r.progress.solves.sweeps == c.progress.solves.sweeps);
   CHECK(r.progress.integrator.rejected == c.progress.integrator.rejected);
@@ -231,6 +237,7 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   c.state.Rbar = c.state.u = c.state.y = Eigen::VectorXd::Zero(4);
   c.state.status.assign(2, Status::Separated);
   c.contact_nodes = {0, 1};
+  c.springs_beta = Eigen::VectorXd::Ones(2);
   c.progress.peak_force = c.progress.peak_time = {0.0};
   write_checkpoint(dir, c);
   CHECK(message(cfg) == "no error");
@@ -251,7 +258,7 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   // A checkpoint of an earlier version (format 2: no contact_nodes) is not called damaged.
   std::ofstream(checkpoint_path(dir)) << "rccm-checkpoint-2" << text.substr(text.find('\n'));
   CHECK_THAT(message(cfg), Catch::Contains("checkpoint.txt: written by another version of rccm (format rccm-checkpoint-2, "
-                                           "this version reads rccm-checkpoint-4)"));
+                                           "this version reads rccm-checkpoint-5)"));
   fs::remove_all(dir);
 }
 
@@ -267,6 +274,7 @@ TEST_CASE("a checkpoint whose state breaks the model's rules is refused, naming 
   good.state.Rbar = good.state.u = good.state.y = Eigen::VectorXd::Zero(6);
   good.state.status.assign(3, Status::Separated);
   good.contact_nodes = {4, 5, 6};
+  good.springs_beta = Eigen::Vector3d(1.0, 0.5, 0.75);
   good.progress.peak_force = {1.0};
   good.progress.peak_time = {0.5};
   const auto message = [&](const std::function<void(Checkpoint&)>& damage) {
@@ -286,10 +294,15 @@ TEST_CASE("a checkpoint whose state breaks the model's rules is refused, naming 
   CHECK_THAT(message([](Checkpoint& c) { c.state.beta[1] = 2.0; }), Catch::Contains(":6: beta must be in [0, 1]"));
   CHECK_THAT(message([](Checkpoint& c) { c.state.t = 11.0; }), Catch::Contains(":5: t must be in [0, time.T"));
   CHECK_THAT(message([](Checkpoint& c) { c.state.t = -1.0; }), Catch::Contains(":5: t must be in [0, time.T"));
-  CHECK_THAT(message([&](Checkpoint& c) { c.energy.external_work = inf; }), Catch::Contains(":11: energy must be 6 finite"));
+  CHECK_THAT(message([&](Checkpoint& c) { c.energy.external_work = inf; }), Catch::Contains(":12: energy must be 6 finite"));
   CHECK_THAT(message([&](Checkpoint& c) { c.state.u[0] = nan; }), Catch::Contains(":8: u must be finite"));
   CHECK_THAT(message([](Checkpoint& c) { c.state.y = Eigen::VectorXd::Zero(5); }),
              Catch::Contains(":9: y must have 2 or 3 components per contact node"));
+  // K0's springs were set at an earlier beta (Model::condense), which only falls.
+  for (const double s : {0.4, 1.5, nan})
+    CHECK_THAT(message([&](Checkpoint& c) { c.springs_beta[1] = s; }), Catch::Contains(":11: springs_beta must be in [beta, 1]"));
+  CHECK_THAT(message([](Checkpoint& c) { c.springs_beta = Eigen::VectorXd::Ones(2); }),
+             Catch::Contains(":11: springs_beta must be in [beta, 1], one per contact node"));
   CHECK_THAT(message([](Checkpoint& c) { c.step = -3; }), Catch::Contains(":3: step must be a whole number"));
   CHECK_THAT(message([](Checkpoint& c) { c.progress.snapshots = {{5.0, c.state.beta, c.state.Rbar, c.state.u, 0.0}}; }),
              Catch::Contains("a snapshot's time must be in [0, t]"));

@@ -5,6 +5,7 @@
 #include "helpers.hpp"
 #include "solid_checks.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/contact/solver_tuning.hpp"
 #include "rccm/fem/box_mesh.hpp"
 #include "rccm/fem/gmsh_mesh.hpp"
 
@@ -246,7 +247,9 @@ loads = ( )" + loads + " );\n");
     INFO("node at " << x.transpose());
     CHECK(s.Rbar[3 * i + 2] / I.pairs[i].measure == Approx(sigma).epsilon(1e-9));
     CHECK(std::hypot(s.Rbar[3 * i], s.Rbar[3 * i + 1]) <= 1e-12 * sigma);
-    CHECK(std::abs(s.u[3 * i + 2]) <= 1e-12);
+    // Zero to the cancellation in u = W0 y + q0, whose terms grow like 1 / springs_floor once
+    // K0 holds the debonded pairs by their floor springs alone (docs/MODEL.md s4).
+    CHECK(std::abs(s.u[3 * i + 2]) <= 1e-13 / tuning::springs_floor);
     CHECK(std::hypot(s.u[3 * i], s.u[3 * i + 1]) == Approx(nu * sigma / E * std::hypot(x.x(), x.z())).margin(1e-12));
     force += s.Rbar[3 * i + 2];
   }

@@ -57,6 +57,8 @@ class ActiveSetSystem {
   bool solve(const ContactProblem& pb, const Pattern& pattern, Eigen::VectorXd& y, Eigen::VectorXd& u);
 
   const Pattern& pattern() const { return factorized_; }  // of the factorized matrix
+  /// Drops the factorization: the next solve factorizes afresh (W0 changed).
+  void forget();
 
  private:
   /// The left-hand sides of the pattern's rows at (y, u), with Rbar = y - E u: Rbar (separated),
@@ -98,7 +100,7 @@ class ActiveSetSystem {
   const Eigen::MatrixXd& inverse();
 
   Pattern factorized_;                   // the pattern of A0_ (empty: none)
-  Eigen::VectorXd E0_, mubar0_;          // the E = D1 - D(beta) and mubar of A0_'s rows
+  Eigen::VectorXd E0_, mubar0_;          // the E = Dref - D(beta) and mubar of A0_'s rows
   Eigen::MatrixXd A0_, A0_inverse_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;  // of A0_ as factorized (before any fold)
   std::optional<HodlrMatrix> mixed_;        // A0 compressed (W0 compressed), mixed from W0's compression

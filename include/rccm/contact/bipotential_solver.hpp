@@ -21,6 +21,10 @@ class BipotentialSolver final : public ContactSolver {
       : params_(params) {}
 
   std::string failure_advice() const override;
+  void forget_W0() override {
+    active_set_2d_.forget();
+    active_set_3d_.forget();
+  }
 
  private:
   ContactSolution solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,

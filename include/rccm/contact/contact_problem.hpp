@@ -1,12 +1,13 @@
 // The condensed interface problem at fixed beta (docs/MODEL.md s4):
 //
-//   u = W0 y + q0,   y = Rbar + E u,   E = D1 - D(beta),
-//   D(beta) = a_i beta_i^2 (Ct, .., Cn) per pair,  D1 = D(1),
+//   u = W0 y + q0,   y = Rbar + E u,   E = Dref - D(beta),
+//   D(beta) = a_i beta_i^2 (Ct, .., Cn) per pair,
 //
-// with W0 = P K0^-1 P^T the flexibility that already holds the springs at beta = 1, and
+// with W0 = P K0^-1 P^T the flexibility that already holds the springs Dref (D(1), or the
+// springs at an earlier beta: Model::condense), and
 // Rbar subject, pair by pair, to Signorini-Coulomb with mubar_i = mu (1 - beta_i), the gap
 // g = g0 + u_n and the slip du_t = u_t - u_ref,t measured from the last accepted state.
-// With D1 = D(beta) = 0 it is the plain frictional contact problem (W, q, mu) of Siconos.
+// With Dref = D(beta) = 0 it is the plain frictional contact problem (W, q, mu) of Siconos.
 #pragma once
 
 #include "rccm/contact/delassus.hpp"
@@ -24,7 +25,7 @@ struct ContactProblem {
   Layout layout;
   const DelassusOperator* W0 = nullptr;  // flexibility, mm/N
   Eigen::VectorXd q0;                    // free response (interface forces zero), mm
-  Eigen::VectorXd D1, Dbeta;             // spring stiffness per component, N/mm
+  Eigen::VectorXd Dref, Dbeta;           // springs in W0's K0, and at beta; per component, N/mm
   Eigen::VectorXd mubar;                 // per pair
   Eigen::VectorXd g0;                    // initial gap per pair, mm
   Eigen::VectorXd u_ref;                 // last accepted u (its tangential parts: the slip reference), mm

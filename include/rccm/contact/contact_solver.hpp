@@ -21,6 +21,9 @@ class ContactSolver {
   /// shrink geometrically while its relative change stays constant.
   ContactSolution solve(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start, const Eigen::VectorXd& u_start);
 
+  /// W0 changed (the model was condensed anew, Model::condense): what a solver kept of the
+  /// old one (a factorization, an inverse) must not serve the new one.
+  virtual void forget_W0() = 0;
   /// For the message of a solve that did not converge: what to change.
   virtual std::string failure_advice() const = 0;
 

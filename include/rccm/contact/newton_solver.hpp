@@ -26,6 +26,7 @@ class NewtonSolver final : public ContactSolver {
   explicit NewtonSolver(const SolverParams& params) : params_(params) {}
 
   std::string failure_advice() const override;
+  void forget_W0() override { active_set_.forget(); }
 
  private:
   ContactSolution solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,

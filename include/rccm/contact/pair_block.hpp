@@ -29,7 +29,7 @@ struct PairBlock {
   using Vec = Eigen::Matrix<double, dim, 1>;
   using Mat = Eigen::Matrix<double, dim, dim>;
   Mat Wii;          // diagonal block of W0
-  Vec E;            // D1 - D(beta)
+  Vec E;            // Dref - D(beta)
   Mat M, Wb;        // (I - W_ii E)^-1 and the effective flexibility
   Vec shift;        // (-u_ref,t, g0): u_i + shift = (du_t, g), the slip and the gap
   double mubar;     // mu (1 - beta)

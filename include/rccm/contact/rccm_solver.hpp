@@ -19,6 +19,7 @@ class RccmSolver final : public ContactSolver {
   explicit RccmSolver(const SolverParams& params) : params_(params) {}
 
   std::string failure_advice() const override;
+  void forget_W0() override { W0_.resize(0, 0); }
 
  private:
   ContactSolution solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
@@ -28,7 +29,7 @@ class RccmSolver final : public ContactSolver {
   template <int dim>
   ContactSolution solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
                            const Eigen::VectorXd& u_start);
-  /// The interface stiffness Kc = W0^-1 (with the springs D1), computed once per W0.
+  /// The interface stiffness Kc = W0^-1 (with the springs Dref), computed once per W0.
   const Eigen::MatrixXd& stiffness(const ContactProblem& pb);
 
   SolverParams params_;

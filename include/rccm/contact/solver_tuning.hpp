@@ -37,6 +37,21 @@ constexpr double singular_pair = 1e-12;
 /// of the pair is prescribed, its Rbar does not move it.
 constexpr double prescribed_pair = 1e-14;
 
+// --- The springs in K0 (model.cpp, solver.springs_follow_beta) ---
+/// A pair's spring in K0 is at least this fraction of D(1) (beta^2 of the beta it is set at):
+/// K0 stays regular where beta = 0. Late in the 625-node corner peel, K0's springs at the
+/// damaged beta with this floor: 9.1 sweeps per solve (1e-3: 7.3, 1e-4: 7.0), at beta = 1:
+/// 20.4. Below it, a body that only the debonded interface holds loses digits to cancellation
+/// in u = W0 y + q0 (~1 / floor): at 1e-3 a block pressed onto a debonded base no longer
+/// reached the tolerance 1e-10.
+constexpr double springs_floor = 1e-2;
+/// A pair's spring lags when beta^2 (floored) fell below 1 / this of its weight in K0; K0 is
+/// factorized and W0 condensed anew once this fraction of the pairs lag. The whole 625-node
+/// peel (docs/PERFORMANCE.md): fractions 0.05 / 0.02 / 0.01 / 0.005 / 0.0025 condensed 1 / 3 /
+/// 6 / 15 / 31 times for 12.0 / 8.2 / 6.8 / 5.8 / 5.3 sweeps per solve (13.6 never): 0.01 was fastest.
+constexpr double springs_lag_ratio = 10;
+constexpr double springs_lag_fraction = 0.01;
+
 // --- Exact active-set step (active_set.cpp) ---
 /// Relative change of a row's spring (E) or of mubar left to refinement instead of a
 /// low-rank correction.

@@ -44,9 +44,8 @@ struct Interface {
   Eigen::VectorXd spring_stiffness() const;
 
   /// P^T diag(a_i Ct weight_t,i, .., a_i Cn weight_n,i) P: the springs as a global matrix with
-  /// per-pair weights (beta^2: the adhesive springs at beta; ones: K0's springs).
+  /// per-pair weights (beta^2: the adhesive springs at beta; K0's springs: Model::condense).
   SparseMatrix springs(const Eigen::VectorXd& weight_t, const Eigen::VectorXd& weight_n) const;
-  SparseMatrix initial_springs() const;
 };
 
 /// The contact pairs of every interface of the config on `mesh`; throws InputError

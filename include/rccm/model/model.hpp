@@ -55,6 +55,17 @@ class Model {
   /// (docs/MODEL.md s4). Its W0 points into this model.
   ContactProblem contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& u_ref) const;
 
+  /// The beta of the adhesive springs K0 holds (docs/MODEL.md s4): ones at the start.
+  const Eigen::VectorXd& springs_beta() const { return springs_beta_; }
+  /// K0 factorized again with the springs at `beta` (each at least tuning::springs_floor of
+  /// D(1)), and W0 and the load responses condensed anew. The contact problem's solution does
+  /// not change; its splitting y = Rbar + E u does, and with it the sweeps' rate: a pair that
+  /// has lost its adhesion is no longer held in W0 by a spring that E must take back.
+  void condense(const Eigen::VectorXd& beta);
+  /// Whether K0's springs lag `beta` enough for condense(beta) to pay (solver.springs_follow_beta):
+  /// tuning::springs_lag_fraction of the pairs with a spring weaker than 1 / springs_lag_ratio of K0's.
+  bool springs_lag(const Eigen::VectorXd& beta) const;
+
   const SparseMatrix& stiffness() const { return K_; }  // bare K, all DOFs
   const std::vector<LoadCase>& loads() const { return loads_; }
   /// The DOFs held: prescribed by the loads, and u_r on the axis of an axisymmetric mesh.
@@ -75,7 +86,13 @@ class Model {
   SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
-  Eigen::VectorXd D1_, g0_;
+  /// Factorizes K0 with the springs at springs_beta_ and condenses the bodies onto the interface.
+  void factorize_and_condense();
+  bool follow_beta_ = false, compress_W0_ = false;
+  LinearSolverParams linear_;
+  std::vector<int> interface_dofs_;  // ordered last in K0's factor, for the dense W0
+  Eigen::VectorXd springs_beta_;
+  Eigen::VectorXd D1_, Dref_, g0_;   // the springs at beta = 1 and those in K0
   std::vector<int> watched_, probes_;
 };
 

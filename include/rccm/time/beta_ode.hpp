@@ -26,6 +26,8 @@ struct SolveCounts {
   long sweeps = 0;
   int max_sweeps = 0;
   double seconds = 0;  // wall time inside the contact solves (problem set-up and solver)
+  long condensations = 0;       // K0 factorized and W0 condensed anew (solver.springs_follow_beta)
+  double condense_seconds = 0;  // wall time of those
   void add(const ContactSolution& s, double solve_seconds);
   double sweeps_per_solve() const { return double(sweeps) / double(std::max(1L, contact_solves)); }
 };
@@ -46,7 +48,8 @@ class BetaOde final : public BetaSystem {
  public:
   using Observer = std::function<void(const AcceptedStep&)>;
 
-  BetaOde(const Model& model, std::unique_ptr<ContactSolver> solver, Observer observer = {});
+  /// `model` is condensed anew (Model::condense) after an accepted step where its springs lag beta.
+  BetaOde(Model& model, std::unique_ptr<ContactSolver> solver, Observer observer = {});
 
   int size() const override { return model_.contact_nodes(); }
   double committed_time() const override { return committed_.t; }
@@ -82,9 +85,11 @@ class BetaOde final : public BetaSystem {
   };
 
   /// Takes up a run from a checkpoint: `state` becomes the committed state after `step`
-  /// accepted steps and `totals` solves, with the excursion seen so far (no solve, no
+  /// accepted steps and `totals` solves, with the excursion seen so far, the model condensed
+  /// with its springs at `springs_beta` as when the checkpoint was written (no solve, no
   /// observer call).
-  void resume(const InterfaceState& state, int step, const SolveCounts& totals, const Excursion& excursion);
+  void resume(const InterfaceState& state, int step, const SolveCounts& totals, const Excursion& excursion,
+              const Eigen::VectorXd& springs_beta);
 
   /// What the user must know: an accepted beta that left [0, previous beta] by more than
   /// beta_slack (clamped).
@@ -99,8 +104,11 @@ class BetaOde final : public BetaSystem {
   Eigen::VectorXd rate_at(const Eigen::VectorXd& beta, const Eigen::VectorXd& u) const;
   /// Throws SolveError naming the step, t and the first pair whose beta is NaN or Inf.
   void check_finite(double t, const Eigen::VectorXd& beta, const char* what) const;
+  /// The model condensed with its springs at `springs_beta`; the committed and midpoint states'
+  /// y = Rbar + E u follow the new E, the solvers drop what they kept of the old W0.
+  void condense(const Eigen::VectorXd& springs_beta);
 
-  const Model& model_;
+  Model& model_;
   std::unique_ptr<ContactSolver> solver_;
   Observer observer_;
   InterfaceState committed_;
