@@ -195,15 +195,19 @@ TEST_CASE("the energy terms are as accurate as beta: at the default tolerance th
 TEST_CASE("K0's springs following beta change no result of B1 or the 3D corner peel and save the peel's sweeps",
           "[physics]") {
   // Only the splitting y = Rbar + E u changes (docs/MODEL.md s4): with the same time steps
-  // the runs agree to the contact solver's tolerance, however often K0 is condensed anew.
+  // the runs agree to the contact solver's tolerance, however often K0 is condensed anew;
+  // ARKODE's own steps agree to its tolerance, and the energy balance (through the states
+  // halfway through each step, split anew too) holds as well.
   struct Case {
     const char* file;
     std::vector<std::string> settings;
+    double tolerance;  // beta, and Rbar, u, energies relative to their largest value
   };
-  const Case cases[] = {{"b1.cfg", {"integrator.method=\"euler\"", "time.steps=300"}},
-                        {"corner-peel.cfg", {"integrator.method=\"euler\"", "time.steps=1200"}}};  // stable steps
+  const Case cases[] = {{"b1.cfg", {"integrator.method=\"euler\"", "time.steps=300"}, 1e-7},
+                        {"corner-peel.cfg", {"integrator.method=\"euler\"", "time.steps=1200"}, 1e-7},  // stable steps
+                        {"b1.cfg", {}, 1e-4}};
   for (const Case& c : cases) {
-    INFO(c.file);
+    INFO(c.file << (c.settings.empty() ? " with ARKODE" : " with Euler"));
     std::vector<std::string> on = c.settings, off = c.settings;
     on.push_back("solver.springs_follow_beta=true");
     off.push_back("solver.springs_follow_beta=false");
@@ -213,16 +217,17 @@ TEST_CASE("K0's springs following beta change no result of B1 or the 3D corner p
     REQUIRE(a.result.snapshots.size() == b.result.snapshots.size());
     for (std::size_t k = 0; k < a.result.snapshots.size(); ++k) {
       const Snapshot &x = a.result.snapshots[k], &y = b.result.snapshots[k];
-      CHECK((x.beta - y.beta).cwiseAbs().maxCoeff() <= 1e-8);
-      CHECK((x.Rbar - y.Rbar).cwiseAbs().maxCoeff() <= 1e-7 * x.Rbar.cwiseAbs().maxCoeff());
-      CHECK((x.u - y.u).cwiseAbs().maxCoeff() <= 1e-7 * x.u.cwiseAbs().maxCoeff());
+      CHECK((x.beta - y.beta).cwiseAbs().maxCoeff() <= 0.1 * c.tolerance);
+      CHECK((x.Rbar - y.Rbar).cwiseAbs().maxCoeff() <= c.tolerance * x.Rbar.cwiseAbs().maxCoeff());
+      CHECK((x.u - y.u).cwiseAbs().maxCoeff() <= c.tolerance * x.u.cwiseAbs().maxCoeff());
     }
     // The body's state too (rebuilt from y by the current condensation): the work of the load
-    // and the strain energy at T.
+    // and the strain energy at T, and the balance of all the terms.
     const double W = a.result.energy.external_work;
-    CHECK(std::abs(b.result.energy.external_work - W) <= 1e-7 * W);
-    CHECK(std::abs(b.result.energy.strain_energy - a.result.energy.strain_energy) <= 1e-7 * W);
-    CHECK(std::abs(b.result.peak_force[0] - a.result.peak_force[0]) <= 1e-7 * std::abs(a.result.peak_force[0]));
+    CHECK(std::abs(b.result.energy.external_work - W) <= c.tolerance * W);
+    CHECK(std::abs(b.result.energy.strain_energy - a.result.energy.strain_energy) <= c.tolerance * W);
+    CHECK(std::abs(b.result.peak_force[0] - a.result.peak_force[0]) <= c.tolerance * std::abs(a.result.peak_force[0]));
+    CHECK(b.result.energy.relative_error() <= 1.2 * a.result.energy.relative_error() + 1e-9);
     if (std::string(c.file) == "corner-peel.cfg") CHECK(b.result.solves.sweeps < 0.8 * a.result.solves.sweeps);
   }
 }
