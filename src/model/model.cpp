@@ -105,8 +105,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   // and below solver.compressed_min_nodes the exact step's matrix, its LU and its inverse,
   // each (dim m)^2 doubles.
   compress_W0_ = interface_.size() >= cfg.solver.compressed_min_nodes &&
-                        (cfg.solver.method == ContactMethod::Bipotential ||
-                         (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2));
+                 (cfg.solver.method == ContactMethod::Bipotential ||
+                  (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2));
   const double m = interface_.layout.offset(interface_.size());
   const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes;
   if (!compress_W0_)

@@ -1,5 +1,5 @@
-// Everything a run builds once from its config and its mesh: loads, elastic body (K0
-// factorized once), interface and condensation. Data flows Config + Mesh -> LoadCases ->
+// Everything a run builds from its config and its mesh: loads, elastic body (K0 factorized
+// once, or again when its springs follow beta: condense()), interface and condensation. Data flows Config + Mesh -> LoadCases ->
 // ElasticProblem -> Interface -> Condensation (docs/ARCHITECTURE.md); the model then poses
 // the contact problem at any (t, beta).
 #pragma once
