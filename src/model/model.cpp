@@ -130,9 +130,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   follow_beta_ = cfg.solver.springs_follow_beta;
   linear_ = cfg.solver.linear;
   D1_ = interface_.spring_stiffness();
-  springs_beta_ = Eigen::VectorXd::Ones(interface_.size());
   try {
-    factorize_and_condense();
+    condense(Eigen::VectorXd::Ones(interface_.size()));  // the springs at beta = 1
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }
@@ -153,8 +152,10 @@ namespace {
 double springs_weight(double beta) { return std::max(beta * beta, tuning::springs_floor); }
 }  // namespace
 
-void Model::factorize_and_condense() {
-  const Eigen::VectorXd w = springs_beta_.unaryExpr(&springs_weight);
+void Model::condense(const Eigen::VectorXd& beta) {
+  RCCM_VERIFY(beta.size() == interface_.size(), "one beta per contact pair");
+  springs_beta_ = beta;
+  const Eigen::VectorXd w = beta.unaryExpr(&springs_weight);
   condensation_.reset();  // it refers to the body it replaces (and both to the memory of the new ones)
   body_.reset();
   body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
@@ -162,12 +163,6 @@ void Model::factorize_and_condense() {
   Dref_ = D1_;
   const Layout& L = interface_.layout;
   for (int i = 0; i < interface_.size(); ++i) L.local(Dref_, i) *= w[i];
-}
-
-void Model::condense(const Eigen::VectorXd& beta) {
-  RCCM_VERIFY(beta.size() == interface_.size(), "one beta per contact pair");
-  springs_beta_ = beta;
-  factorize_and_condense();
 }
 
 bool Model::springs_lag(const Eigen::VectorXd& beta) const {

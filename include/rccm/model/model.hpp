@@ -1,7 +1,7 @@
 // Everything a run builds from its config and its mesh: loads, elastic body (K0 factorized
-// once, or again when its springs follow beta: condense()), interface and condensation. Data flows Config + Mesh -> LoadCases ->
-// ElasticProblem -> Interface -> Condensation (docs/ARCHITECTURE.md); the model then poses
-// the contact problem at any (t, beta).
+// once, or again when its springs follow beta: condense()), interface and condensation. Data
+// flows Config + Mesh -> LoadCases -> ElasticProblem -> Interface -> Condensation
+// (docs/ARCHITECTURE.md); the model then poses the contact problem at any (t, beta).
 #pragma once
 
 #include "rccm/base/config.hpp"
@@ -86,8 +86,6 @@ class Model {
   SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
-  /// Factorizes K0 with the springs at springs_beta_ and condenses the bodies onto the interface.
-  void factorize_and_condense();
   bool follow_beta_ = false, compress_W0_ = false;
   LinearSolverParams linear_;
   std::vector<int> interface_dofs_;  // ordered last in K0's factor, for the dense W0
