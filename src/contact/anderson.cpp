@@ -4,8 +4,8 @@
 
 namespace rccm {
 
-void AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u) {
-  if (depth_ <= 0) return;
+double AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u) {
+  if (depth_ <= 0) return 0;
   const Eigen::Index m = y.size();
   const Eigen::VectorXd f = y - y_in;  // the sweep's residual
   if (has_previous_) {
@@ -20,7 +20,7 @@ void AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen:
   G_previous_ = y;
   u_previous_ = u;
   has_previous_ = true;
-  if (count_ == 0) return;
+  if (count_ == 0) return 0;
   // The least-squares problem by a rank-revealing QR: nearly parallel differences (a
   // stagnating sweep) are dropped rather than amplified.
   const auto F = dF_.leftCols(count_);
@@ -29,10 +29,11 @@ void AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen:
   // No difference left at all (a sweep that repeats the same step: stagnation at round-off)
   // leaves nothing to combine, and the solve of a rank-0 factorization is not finite: the
   // sweep's iterate stands.
-  if (qr.rank() == 0) return;
+  if (qr.rank() == 0) return 0;
   const Eigen::VectorXd gamma = qr.solve(f);
   y.noalias() -= dG_.leftCols(count_) * gamma;
   u.noalias() -= dU_.leftCols(count_) * gamma;
+  return gamma.lpNorm<1>();
 }
 
 }  // namespace rccm

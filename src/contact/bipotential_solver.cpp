@@ -108,20 +108,20 @@ class BipotentialSolver::Iteration {
 
   /// After a sweep: Rbar = y - E u, and whether its relative change since R_old and the
   /// scaled natural-map residual are both below the tolerance. A fresh u = W0 y + q0 every
-  /// tuning::refresh_interval sweeps, and to confirm convergence (Jacobi: every sweep).
+  /// tuning::refresh_interval sweeps (Jacobi: every sweep); in between, Gauss-Seidel's
+  /// incremental u differs from it by the round-off of fewer sweeps, far below the tolerance,
+  /// so convergence is judged on it without another product (a tenth of a 3D solve), unless
+  /// extrapolations with large weights may have amplified that round-off (mixed_u_weight).
   bool converged_after_sweep(const Eigen::VectorXd& R_old) {
-    const bool fresh = params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0;
-    if (fresh) refresh();
-    bool converged = criteria_hold(R_old);
-    if (converged && !fresh) {
+    if (params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0) refresh();
+    if (!criteria_hold(R_old)) return false;
+    if (u_weight_ > tuning::mixed_u_weight) {
       refresh();
-      converged = criteria_hold(R_old);
+      if (!criteria_hold(R_old)) return false;
     }
-    if (converged) {
-      s.converged = true;
-      s.Rbar = R_projected_;  // in the cone by construction (y - E u differs by round-off)
-    }
-    return converged;
+    s.converged = true;
+    s.Rbar = R_projected_;  // in the cone by construction (y - E u differs by round-off)
+    return true;
   }
 
   /// The verifying pass found the solution: its branches and projections are the result.
@@ -147,7 +147,7 @@ class BipotentialSolver::Iteration {
 
   /// Anderson's extrapolation after a sweep that started at y_in (anderson.hpp); Rbar follows.
   void accelerate(AndersonMixing& anderson, const Eigen::VectorXd& y_in) {
-    anderson.mix(y_in, s.y, s.u);
+    u_weight_ *= 1 + anderson.mix(y_in, s.y, s.u);
     s.Rbar = s.y - E_.cwiseProduct(s.u);
   }
 
@@ -171,6 +171,7 @@ class BipotentialSolver::Iteration {
   void refresh() {
     pb_.W0->multiply(s.y, s.u);
     s.u += pb_.q0;
+    u_weight_ = 1;
   }
   /// The verifying pass costs as much as a sweep's local solves (on a sparse W0, half the
   /// sweep): it runs only once the change is below the tolerance.
@@ -192,6 +193,7 @@ class BipotentialSolver::Iteration {
   Eigen::VectorXd R_projected_;  // the projections of the last sweep: the reported Rbar
   Verification check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
+  double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
 };
 
 ContactSolution BipotentialSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,

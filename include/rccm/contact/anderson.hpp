@@ -23,7 +23,10 @@ class AndersonMixing {
   explicit AndersonMixing(int depth) : depth_(depth) {}
 
   /// A sweep took y_in to (y, u = W0 y + q0): replaces (y, u) by the extrapolated iterate.
-  void mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u);
+  /// Returns the combination's weight sum |gamma_k| (0: no extrapolation): the mixed u
+  /// carries the round-off of the sweeps' u's times about this much (a nearly singular
+  /// least-squares problem gives large weights).
+  double mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u);
 
  private:
   int depth_;
