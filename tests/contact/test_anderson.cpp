@@ -6,7 +6,9 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <random>
+#include <vector>
 
 using namespace rccm;
 
@@ -92,5 +94,38 @@ TEST_CASE("Anderson mixing of a sweep that repeats the same step (every differen
     INFO("sweep " << k);
     REQUIRE(y == y_in + step);
     REQUIRE(u_mixed == u);
+  }
+}
+
+TEST_CASE("Anderson mixing returns the weight of its combination: the 1-norm of the coefficients that the mixed y shows",
+          "[anderson]") {
+  // The solver multiplies these weights up to decide whether the mixed u, which carries the
+  // sweeps' round-off times them, can be trusted without a fresh product (solver_tuning.hpp).
+  // Independently of the mix: its y is G_k - dG gamma, with dG the differences of the sweeps'
+  // results kept in the test, so gamma is the least-squares solution of dG gamma = G_k - y.
+  std::mt19937 gen(13);
+  const AffineMap map(10, gen);
+  const int depth = 3;
+  AndersonMixing anderson(depth);
+  std::vector<Eigen::VectorXd> G;
+  Eigen::VectorXd y = Eigen::VectorXd::Zero(10);
+  for (int k = 0; k < 8; ++k) {
+    const Eigen::VectorXd y_in = y;
+    y = map.A * y_in + map.b;
+    G.push_back(y);
+    Eigen::VectorXd u = y;
+    const double weight = anderson.mix(y_in, y, u);
+    INFO("sweep " << k << ", weight " << weight);
+    if (k == 0) {
+      REQUIRE(weight == 0);  // nothing to combine yet
+      continue;
+    }
+    const int count = std::min(k, depth);
+    Eigen::MatrixXd dG(10, count);
+    for (int j = 0; j < count; ++j) dG.col(j) = G[k - j] - G[k - j - 1];
+    const Eigen::VectorXd gamma = dG.colPivHouseholderQr().solve(G[k] - y);
+    REQUIRE((dG * gamma - (G[k] - y)).norm() <= 1e-10 * (1 + y.norm()));
+    CHECK(weight == Approx(gamma.lpNorm<1>()).epsilon(1e-6));
+    CHECK(weight > 0);
   }
 }
