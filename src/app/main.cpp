@@ -9,6 +9,7 @@
 #include "rccm/base/errors.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "rccm/io/output_directory.hpp"
+#include "rccm/la/blas_threads.hpp"
 #include "rccm/la/parallel.hpp"
 
 #include <CLI/CLI.hpp>
@@ -73,6 +74,7 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   std::filesystem::create_directories(directory);
   if (!lock) lock.emplace(directory, "sweep");
   std::cout << "# " << cases.size() << " cases on " << jobs << (jobs == 1 ? " thread" : " threads") << ", in " << directory << "\n";
+  if (jobs > 1) rccm::blas_threads::keep_one();  // the cases' wide scopes would set the BLAS's threads for each other
   rccm::run_sweep(cases, jobs, force);
   rccm::write_sweep_summary(std::cout, directory, axes, cases, rccm_path, config_file);
   std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: "
@@ -170,6 +172,10 @@ int main(int argc, char** argv) {
   std::signal(SIGCHLD, SIG_DFL);
   // Under mpirun: every process runs the problem, the body's solves are shared, process 0 writes.
   if (rccm::parallel::launched()) rccm::parallel::start();
+  // The BLAS: one thread outside the large sparse work, whose idle threads would spin on the
+  // other cores (la/blas_threads.hpp); one everywhere when processes share the cores.
+  rccm::blas_threads::start();
+  if (rccm::parallel::size() > 1) rccm::blas_threads::keep_one();
   const bool root = rccm::parallel::rank() == 0;
   const int status = [&] {
   try {

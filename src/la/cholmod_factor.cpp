@@ -1,8 +1,11 @@
 #include "rccm/la/cholmod_factor.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/la/blas_threads.hpp"
 
 #include <Eigen/CholmodSupport>
+
+#include <optional>
 
 namespace rccm {
 
@@ -24,6 +27,7 @@ struct CholmodFactor::Impl {
 
 CholmodFactor::CholmodFactor(const Eigen::SparseMatrix<double>& A, const std::vector<int>& last)
     : impl_(std::make_unique<Impl>()) {
+  const blas_threads::Wide wide;  // the factorization shares well among the BLAS's threads
   cholmod_common& cm = impl_->cm;
   cholmod_sparse a = Eigen::viewAsCholmod(A.selfadjointView<Eigen::Lower>());
   const int n = static_cast<int>(A.rows()), c = static_cast<int>(last.size());
@@ -55,6 +59,10 @@ CholmodFactor::~CholmodFactor() = default;
 
 Eigen::MatrixXd CholmodFactor::solve(const Eigen::MatrixXd& b) const {
   if (b.cols() == 0) return Eigen::MatrixXd(b.rows(), 0);
+  // A block of right-hand sides (W0's columns) shares among the BLAS's threads; one is a
+  // run's small solve, for which they would only spin (blas_threads.hpp).
+  std::optional<blas_threads::Wide> wide;
+  if (b.cols() > 1) wide.emplace();
   // A view of b: cholmod_solve reads B and writes X.
   cholmod_dense B = Eigen::viewAsCholmod(const_cast<Eigen::MatrixXd&>(b));
   cholmod_dense* X = cholmod_solve(CHOLMOD_A, impl_->L, &B, &impl_->cm);

@@ -1,0 +1,36 @@
+// The BLAS's threads. CHOLMOD's supernodal kernels call the BLAS, on Debian usually OpenBLAS
+// with a thread per core; after each call its idle threads spin (sched_yield) before they
+// sleep. A run's solves are small and frequent (the body at each step), so the spinning threads
+// took up to half of the other core (the 625-node corner peel: 62-102 s of CPU for 47-66 s of
+// wall, the same run in one thread 47-62 s of CPU; docs/PERFORMANCE.md "The BLAS's threads").
+// rccm therefore gives the BLAS one thread, and its own count only inside a Wide scope, around
+// the large work that shares well (a sparse factorization, a block of solves).
+// Without OpenBLAS (another BLAS chosen by Debian's alternatives) all of this does nothing.
+#pragma once
+
+namespace rccm::blas_threads {
+
+/// Gives the BLAS one thread (the first call of any function here does so).
+void start();
+
+/// The BLAS's threads now; 0 when the BLAS is not OpenBLAS.
+int current();
+
+/// The threads a Wide scope gives the BLAS: its own count at start-up (OPENBLAS_NUM_THREADS or
+/// the cores), or 1 after keep_one().
+int wide();
+
+/// One thread everywhere from now on, Wide scopes included: for several runs at once in one
+/// process (`rccm sweep -j N`), whose scopes would otherwise set the BLAS's threads for each other.
+void keep_one();
+
+/// Within its lifetime the BLAS has wide() threads; one before and after.
+class Wide {
+ public:
+  Wide();
+  ~Wide();
+  Wide(const Wide&) = delete;
+  Wide& operator=(const Wide&) = delete;
+};
+
+}  // namespace rccm::blas_threads

@@ -1,0 +1,56 @@
+#include "rccm/la/blas_threads.hpp"
+
+#include <dlfcn.h>
+
+#include <atomic>
+
+namespace rccm::blas_threads {
+
+namespace {
+
+using SetThreads = void (*)(int);
+using GetThreads = int (*)();
+
+/// OpenBLAS's own functions, looked up in the running program (CHOLMOD loaded the BLAS).
+struct OpenBlas {
+  SetThreads set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
+  GetThreads get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
+  int start_up = set && get ? get() : 0;  // before rccm changed anything
+  std::atomic<int> wide{start_up};
+  OpenBlas() {
+    if (set && get) set(1);
+  }
+};
+
+OpenBlas& openblas() {
+  static OpenBlas blas;
+  return blas;
+}
+
+}  // namespace
+
+void start() { openblas(); }
+
+int current() {
+  const OpenBlas& b = openblas();
+  return b.get ? b.get() : 0;
+}
+
+int wide() { return openblas().wide; }
+
+void keep_one() {
+  OpenBlas& b = openblas();
+  b.wide = b.set ? 1 : 0;
+}
+
+Wide::Wide() {
+  OpenBlas& b = openblas();
+  if (b.set && b.wide > 1) b.set(b.wide);
+}
+
+Wide::~Wide() {
+  OpenBlas& b = openblas();
+  if (b.set && b.wide > 1) b.set(1);
+}
+
+}  // namespace rccm::blas_threads
