@@ -14,6 +14,8 @@
 #include <Eigen/SparseCholesky>
 #include <catch2/catch.hpp>
 
+#include <random>
+
 using namespace rccm;
 
 namespace {
@@ -122,6 +124,50 @@ TEST_CASE("W0 from the Schur complement of the interface DOFs equals P K0^-1 P^T
   const Eigen::VectorXd D1 = model.interface().spring_stiffness();
   for (int i = 0; i < beta.size(); ++i)
     for (int c = 2 * i; c < 2 * i + 2; ++c) CHECK(pb.Dref[c] == Approx(w[i] * D1[c]).epsilon(1e-14));
+  }
+}
+
+TEST_CASE("condensations at damaged betas with W0 compressed: W0 q0 and the body equal direct solves of K0", "[model]") {
+  // Model::condense on a compressed W0 (peeled from sparse solves): W0's products, q0 and the
+  // body's displacement against K0 = K + springs(beta) solved directly, at beta = 1, at a
+  // damaged beta and at one more damaged.
+  const std::string loads = R"({ node_set = "top"; type = "traction"; component = "y"; value = 2.0; },
+                               { node_set = "right"; type = "traction"; component = "x"; value = -1.0; })";
+  const Config cfg = test::config_from_text(block_config("Q4", "mu = 0.3;", loads),
+                                            {"mesh.nx=99", "solver.compressed_min_nodes=16"});
+  Model model = test::make_model(cfg);
+  const int n = model.contact_nodes();
+  REQUIRE(n == 100);
+  REQUIRE(model.condensation().W0().compressed() != nullptr);
+  const Eigen::MatrixXd P = model.interface().P;
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(P.cols());
+  for (const LoadCase& lc : model.loads()) F += lc.amplitude(1.0) * lc.force;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Eigen::MatrixXd Y = Eigen::MatrixXd::NullaryExpr(P.rows(), 4, [&]() { return U(gen); });
+  Eigen::VectorXd beta = Eigen::VectorXd::Ones(n);
+  for (int stage = 0; stage < 3; ++stage) {
+    if (stage == 1)
+      for (int i = 0; i < n; ++i) beta[i] = i < 30 ? 0.0 : i < 60 ? 0.5 : 1.0;
+    if (stage == 2)
+      for (int i = 0; i < n; ++i) beta[i] = std::min(beta[i], i % 4 == 0 ? 0.2 : 0.9);
+    if (stage > 0) model.condense(beta);
+    INFO("stage " << stage);
+    const Eigen::VectorXd w = beta.cwiseProduct(beta).cwiseMax(tuning::springs_floor);
+    const Eigen::MatrixXd K0 = Eigen::MatrixXd(model.stiffness() + model.interface().springs(w, w));
+    const Eigen::LDLT<Eigen::MatrixXd> direct(K0);
+    const Eigen::MatrixXd W_direct = P * direct.solve(P.transpose());
+    const Eigen::VectorXd q0_direct = P * direct.solve(F);
+    const Condensation& c = model.condensation();
+    for (int k = 0; k < Y.cols(); ++k) {
+      Eigen::VectorXd Wy(P.rows());
+      c.W0().multiply(Y.col(k), Wy);
+      CHECK((Wy - W_direct * Y.col(k)).norm() <= 1e-10 * (W_direct * Y.col(k)).norm());
+      const Eigen::VectorXd u = c.displacement(1.0, Y.col(k));
+      const Eigen::VectorXd u_direct = direct.solve(P.transpose() * Y.col(k) + F);
+      CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
+    }
+    CHECK((c.q0(1.0) - q0_direct).norm() <= 1e-10 * q0_direct.norm());
   }
 }
 
