@@ -15,8 +15,7 @@ using GetThreads = int (*)();
 struct OpenBlas {
   SetThreads set = reinterpret_cast<SetThreads>(dlsym(RTLD_DEFAULT, "openblas_set_num_threads"));
   GetThreads get = reinterpret_cast<GetThreads>(dlsym(RTLD_DEFAULT, "openblas_get_num_threads"));
-  int start_up = set && get ? get() : 0;  // before rccm changed anything
-  std::atomic<int> wide{start_up};
+  std::atomic<int> wide{set && get ? get() : 0};  // the BLAS's own count, before rccm changed it
   OpenBlas() {
     if (set && get) set(1);
   }
