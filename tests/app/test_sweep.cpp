@@ -137,6 +137,30 @@ TEST_CASE("a sweep's complete case that warned says so in its row", "[sweep]") {
   fs::remove_all(dir);
 }
 
+TEST_CASE("a sweep's rate-independent case says its imbalance is released in snap-through", "[sweep]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_snap";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<SweepAxis> axes = {{"interface.alpha", {"0", "1"}}};
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {}, axes, dir.string());
+  run_sweep(cases, 1);
+  REQUIRE(cases[0].status == CaseStatus::Complete);
+  REQUIRE(cases[1].status == CaseStatus::Complete);
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
+  // B1 snaps through at alpha = 0: most of w's work is released in the jumps (README: 0.79),
+  // while the viscous case closes its balance to the integrator's accuracy.
+  const std::size_t imbalance = summary.header.size() - 4;
+  REQUIRE(summary.header.at(imbalance) == "energy imbalance (relative)");
+  CHECK(std::stod(summary.rows.at(0).at(imbalance)) > 0.5);
+  CHECK(std::stod(summary.rows.at(1).at(imbalance)) < 1e-2);
+  CHECK_THAT(summary.rows.at(0).back(), Catch::StartsWith("rate-independent (alpha = 0): the imbalance is the work "
+                                                          "released in snap-through"));
+  CHECK(summary.rows.at(1).back().empty());
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the failed row has a status and empty cells",
           "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_failed";
