@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The command line as a hostile or hurried user meets it (issue 15):
-#  1. malformed --set paths and values are bad input (exit 2, the path named), a bare path is a
+#  1. malformed --set paths and values are bad input (exit 2, the path named; two settings in
+#     one value too, not the first kept and the second dropped), a bare path is a
 #     string, -o DIR writes there, --restart '' is refused; a doubtful interface warns;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too;
@@ -11,7 +12,8 @@
 #     case starts, summary.csv says which cases did not run;
 #     the same sweep again is refused, its summary untouched, the interrupted case's restart
 #     suggested; the command the stopped sweep printed goes on with it (sweep --restart); a
-#     sweep's overlay command names its own cases, its cases' notes their case;
+#     sweep's overlay command names its own cases, its cases' notes their case; a sweep into
+#     the directory of another is refused, the other's summary untouched;
 #  7. a second SIGINT exits at once;
 #  8. a signal during a run's set-up exits at once, writing nothing, gmsh's process with it;
 #  9. started by a parent that ignores SIGCHLD, a gmsh config still gets its mesh;
@@ -38,6 +40,7 @@ expect_bad "--set mesh..nx: '' is not a setting name" --set mesh..nx=3
 expect_bad "--set interface.1x: '1x' is not a setting name" --set interface.1x=3
 expect_bad "--set interface.m u: 'm u' is not a setting name" --set 'interface.m u=3'
 expect_bad "the list has 1 element(s), numbered from 0" --set 'loads.[99999999999999999999].value=1'
+expect_bad "--set time.T: the value '0.5;steps=5' holds more than one setting" --set 'time.T=0.5;steps=5'
 expect_bad "the integer 100000000000000000000 is beyond what libconfig reads" --set 'loads.[0].value=100000000000000000000'
 expect_bad "interface.mu: must be a number (got a string)" --set interface.mu=0.2x
 check; "$rccm" run "$b1" -q --restart '' 2>"$work/err"; rc=$?
@@ -159,6 +162,11 @@ check; grep -q "plots: tools/plot --overlay '$work/sw2' '$work/sw2/alpha=1' '$wo
 "$rccm" run "$b1" -q "${short[@]}" --set interface.alpha=1 -o "$work/sw2/alpha=1" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 2 ] && ! grep -q -- "--restart" "$work/err" && grep -q "give --force to overwrite them, or another directory (-o DIR)" "$work/err" \
   || fail "a finished run's directory: exit $rc, $(cat "$work/err")"
+# Another sweep into that directory, of other cases: refused, the earlier summary untouched.
+cp "$work/sw2/summary.csv" "$work/summary.before"
+"$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.alpha=3,4 -o "$work/sw2" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 2 ] && grep -q "holds the summary.csv of an earlier sweep" "$work/err" && [ ! -e "$work/sw2/alpha=3" ] \
+  && cmp -s "$work/sw2/summary.csv" "$work/summary.before" || fail "a sweep over an earlier one: exit $rc, $(cat "$work/err")"
 
 # 7. A second SIGINT: at once, without waiting for the step (B1 refined 16 times: steps of ~0.1 s).
 out=$work/twice

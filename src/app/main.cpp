@@ -56,7 +56,7 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
     lock.emplace(directory, "sweep --restart");
     for (const std::string& note : rccm::plan_resumed_sweep(cases)) std::cout << "# " << note << "\n";
   }
-  if (!resume && !force)  // as `rccm run`: a case's results are not overwritten, and nothing is written
+  if (!resume && !force) {  // as `rccm run`: a sweep's or a case's results are not overwritten, and nothing is written
     for (const rccm::SweepCase& c : cases) {
       try {
         rccm::check_output_directory(c.config, false);
@@ -66,6 +66,12 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
                                "--force runs the whole sweep afresh)");
       }
     }
+    for (const char* file : {"summary.csv", "jobs.txt"})  // another sweep's (its cases need not clash)
+      if (std::filesystem::exists(std::filesystem::path(directory) / file))
+        throw rccm::InputError("sweep: " + directory + " holds the " + file + " of an earlier sweep: give another "
+                               "--output, --restart " + directory + " to go on with that sweep, or --force to run "
+                               "this one afresh there (its summary replaces the earlier one)");
+  }
   for (const rccm::SweepCase& c : cases)  // PETSc is not thread-safe: its cases one at a time
     if (jobs > 1 && (c.config.solver.linear.kind == rccm::LinearSolver::Mumps ||
                      c.config.solver.linear.kind == rccm::LinearSolver::CgGamg))

@@ -304,6 +304,8 @@ void apply_override(libconfig::Config& cfg, const std::string& item) {
     for (char c : given) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
     value.readString("v = " + quoted + "\";");
   }
+  if (value.getRoot().getLength() != 1)  // "10;steps=5": libconfig reads two settings, the second would be lost
+    throw fail("the value '" + given + "' holds more than one setting: give each its own --set");
   std::vector<std::string> parts(1);
   for (char c : path) {
     if (c == '.') parts.emplace_back();
