@@ -126,7 +126,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
   json energy = {{"external_work", e.external_work},           {"strain_energy", e.strain_energy},
                  {"free_energy_change", e.free_energy_change}, {"damage_dissipation", e.damage_dissipation},
                  {"friction_dissipation", e.friction_dissipation}, {"normal_contact_work", e.normal_contact_work},
-                 {"relative_error", e.relative_error()}};
+                 {"relative_error", e.relative_error()},           {"round_off", e.round_off}};
   // In the rate-independent limit what the balance leaves is released in snap-through, no error.
   energy[cfg.integrator.method == Method::RateIndependent ? "released_in_snap_through" : "imbalance"] = e.imbalance();
   json steps = json::array();
@@ -195,7 +195,8 @@ ReportedRun read_report_json(const std::string& directory, const Config& cfg) {
     r.stopped = report.at("stopped").get<std::string>();
     const nlohmann::json& e = report.at("energy");
     r.energy = {e.at("external_work"),        e.at("strain_energy"),        e.at("free_energy_change"),
-                e.at("damage_dissipation"),   e.at("friction_dissipation"), e.at("normal_contact_work")};
+                e.at("damage_dissipation"),   e.at("friction_dissipation"), e.at("normal_contact_work"),
+                e.value("round_off", 0.0)};
     r.peak_force = report.at("peak_force").get<std::vector<double>>();
     r.peak_time = report.at("peak_time").get<std::vector<double>>();
     for (const nlohmann::json& s : report.at("snapshots")) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace rccm {
 
@@ -25,7 +26,7 @@ double stieltjes(const V& x0, const V* xm, const V& x1, const V& y0, const V* ym
 
 double EnergyTerms::relative_error() const {
   const double scale = std::max({std::abs(external_work), std::abs(strain_energy), std::abs(free_energy_change),
-                                 damage_dissipation, friction_dissipation, 1e-300});
+                                 std::abs(damage_dissipation), std::abs(friction_dissipation), round_off, 1e-300});
   return std::abs(imbalance()) / scale;
 }
 
@@ -37,6 +38,14 @@ EnergyBalance::EnergyBalance(const Model& model, const InterfaceState& initial, 
       previous_(initial),
       previous_body_(initial_body) {
   terms_.strain_energy = 0.5 * initial_body.u.dot(model.stiffness() * initial_body.u);
+  terms_.round_off = round_off();
+}
+
+double EnergyBalance::round_off() const {
+  const Interface& I = model_.interface();
+  double adhesion = 0;
+  for (int i = 0; i < I.size(); ++i) adhesion += I.pairs[i].measure * I.law(i).w;
+  return std::sqrt(std::numeric_limits<double>::epsilon()) * adhesion;
 }
 
 double EnergyBalance::free_energy(const InterfaceState& s) const {
@@ -51,6 +60,7 @@ void EnergyBalance::resume(const InterfaceState& s, const BodyState& b, const En
   previous_ = s;
   previous_body_ = b;
   terms_ = terms;
+  terms_.round_off = round_off();
 }
 
 void EnergyBalance::add(const InterfaceState& s, const BodyState& b, const InterfaceState* mid,

@@ -9,7 +9,9 @@
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <iostream>
 #include <unistd.h>
@@ -171,6 +173,25 @@ TEST_CASE("no friction while fully bonded: Rbar_t = 0 wherever beta = 1, under c
     CHECK(bonded_pressed > 0);
     CHECK(worst == 0.0);
   }
+}
+
+TEST_CASE("a run that loads nothing moves nothing and its energy balance is round-off of the adhesion energy",
+          "[physics]") {
+  // B1 with its pull at 0: u = 0, beta = 1 throughout, every energy term 0 but round-off; the
+  // relative imbalance is taken against sqrt(eps) of w |Gamma_c| (50 mm x 1e-6 N/mm), not
+  // against the round-off itself (which made it 7e280 and warned of a too coarse step).
+  const Run r = run_shipped("b1.cfg", {"loads.[0].value=0.0", "time.T=2.0", "output.times=[]"});
+  const EnergyTerms& e = r.result.energy;
+  CHECK(e.round_off == Approx(std::sqrt(std::numeric_limits<double>::epsilon()) * 50.0 * 1e-6).epsilon(1e-12));
+  for (double term : {e.external_work, e.strain_energy, e.free_energy_change, e.damage_dissipation,
+                      e.friction_dissipation})
+    CHECK(std::abs(term) <= 1e-15);
+  CHECK(e.relative_error() < 1e-6);
+  CHECK(r.curves.numbers("debonded length [mm]").back() == 0.0);
+  // A negative term counts by its magnitude: the balance 0 = -d is wholly off.
+  EnergyTerms off;
+  off.damage_dissipation = -1e-3;
+  CHECK(off.relative_error() == 1.0);
 }
 
 TEST_CASE("the energy terms are as accurate as beta: at the default tolerance the dissipation is that of a tight run",

@@ -22,11 +22,14 @@ struct EnergyTerms {
   double damage_dissipation = 0;    // sum a_i int G dbeta  (= alpha beta'^2 dt >= 0)
   double friction_dissipation = 0;  // sum -int Rbar_t . du_t >= 0
   double normal_contact_work = 0;   // sum int Rbar_n du_n (0 by Signorini; reported, not balanced)
+  /// An energy below this is round-off: sqrt(eps) of the interface's adhesion energy sum a_i w_i
+  /// (the scale of relative_error() in a run that loads nothing).
+  double round_off = 0;
 
   double imbalance() const {
     return external_work - (strain_energy + free_energy_change + damage_dissipation + friction_dissipation);
   }
-  /// |imbalance| relative to the largest term.
+  /// |imbalance| relative to the largest term (at least round_off).
   double relative_error() const;
 };
 
@@ -48,6 +51,7 @@ class EnergyBalance {
 
  private:
   double free_energy(const InterfaceState& s) const;
+  double round_off() const;
   const Model& model_;
   bool rate_independent_;
   double psi0_;
