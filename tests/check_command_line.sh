@@ -7,7 +7,7 @@
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too;
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
 #  5. a full disk: exit 3, the message names the file that could not be written and does not
-#     claim a report that is not there;
+#     claim a report that is not there, nor blames the integrator (ARKODE's step callback);
 #  6. SIGINT during a sweep: exit 130, the running case stops at an accepted step, no other
 #     case starts, summary.csv says which cases did not run;
 #     the same sweep again is refused, its summary untouched, the interrupted case's restart
@@ -118,6 +118,11 @@ if mount -t tmpfs -o size=96k tmpfs "$work/full" 2>/dev/null; then
   if grep -q "report.txt says" "$work/err"; then
     grep -q "status: STOPPED" "$work/full/run/report.txt" 2>/dev/null || fail "disk full: the message claims a report that is not there"
   fi
+  # ... and with ARKODE, whose step callback the write fails in: the file named, no integrator's advice.
+  rm -rf "$work/full/run"
+  check; "$rccm" run "$b1" -q -o "$work/full/run" >/dev/null 2>"$work/err"; rc=$?
+  [ "$rc" -eq 3 ] && grep -qE "cannot (write|append to) .*\(No space left on device\)" "$work/err" && ! grep -q "ARKODE" "$work/err" \
+    || fail "disk full under ARKODE: exit $rc, $(cat "$work/err")"
   umount "$work/full"
 else
   echo "note: the full-disk case is skipped (no tmpfs mount here)"

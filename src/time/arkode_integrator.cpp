@@ -47,7 +47,7 @@ struct ArkodeIntegrator::Impl {
   void* mem = nullptr;
   std::string contact_failure;  // the last contact solve that failed, for the final message
   std::string arkode_message;   // ARKODE's own last error message
-  std::exception_ptr stop;       // anything else thrown after an accepted step (a stop request)
+  std::exception_ptr stop;       // anything else thrown after an accepted step (a stop request, a failed write)
 
   ArkodeScheme scheme;
 
@@ -138,6 +138,9 @@ struct ArkodeIntegrator::Impl {
     try {
       self->ode.accept(t, as_eigen(beta));
       return 0;
+    } catch (const WriteError&) {  // a full disk: no matter of the integrator, said as it is
+      self->stop = std::current_exception();
+      return -1;
     } catch (const SolveError& e) {
       self->contact_failure = e.what();
       return -1;
