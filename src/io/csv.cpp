@@ -8,6 +8,9 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <limits>
+#include <sstream>
 
 namespace rccm {
 
@@ -55,23 +58,36 @@ CsvStream::CsvStream(const std::string& path, const std::vector<std::string>& he
   write(csv_line(header));
 }
 
-CsvStream::CsvStream(const std::string& path, double t) : path_(path) {
+std::vector<std::string> CsvStream::lines_until(const std::string& path, double t) {
   std::ifstream in(path);
-  std::string header, line;
-  if (!std::getline(in, header)) throw InputError(path + ": the result file to take up is missing or empty");
-  const std::size_t columns = csv_split(header).size();
+  std::vector<std::string> lines(1);
+  if (!std::getline(in, lines[0])) throw InputError(path + ": the result file to take up is missing or empty");
+  const std::size_t columns = csv_split(lines[0]).size();
+  const double eps = 1e-9 * std::max(1.0, std::abs(t));
+  double last = -std::numeric_limits<double>::infinity();
+  for (std::string line; std::getline(in, line);) {
+    const std::vector<std::string> fields = csv_split(line);
+    char* end = nullptr;
+    const double time = std::strtod(fields[0].c_str(), &end);
+    const bool complete = fields.size() == columns && end != fields[0].c_str() && *end == '\0';
+    if (!complete || time > t + eps) break;  // a line cut short by a crash, or after the checkpoint
+    lines.push_back(line);
+    last = time;
+  }
+  if (!(last >= t - eps)) {
+    std::ostringstream m;
+    m << path << ": its rows end " << (lines.size() > 1 ? "at t = " + csv_number(last) + " s" : "before any step")
+      << ", before the checkpoint's t = " << csv_number(t) << " s (rows were lost, e.g. the file was cut short): a "
+      << "restart cannot rebuild them; run afresh with --force";
+    throw InputError(m.str());
+  }
+  return lines;
+}
+
+CsvStream::CsvStream(const std::string& path, double t) : path_(path) {
   {
     AtomicFile kept(path);
-    kept.stream() << header << "\n";
-    const double eps = 1e-9 * std::max(1.0, std::abs(t));
-    while (std::getline(in, line)) {
-      const std::vector<std::string> fields = csv_split(line);
-      char* end = nullptr;
-      const double time = std::strtod(fields[0].c_str(), &end);
-      const bool complete = fields.size() == columns && end != fields[0].c_str() && *end == '\0';
-      if (!complete || time > t + eps) break;  // a line cut short by a crash, or after the checkpoint
-      kept.stream() << line << "\n";
-    }
+    for (const std::string& line : lines_until(path, t)) kept.stream() << line << "\n";
     kept.commit();
   }
   out_.open(path, std::ios::app);

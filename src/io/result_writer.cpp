@@ -92,6 +92,7 @@ ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::str
     curves_ = std::make_unique<CsvStream>(curves, curves_header(cfg));
     return;
   }
+  for (const std::string& csv : {history, curves}) CsvStream::lines_until(csv, resume->t);  // both, before either is cut
   history_ = std::make_unique<CsvStream>(history, resume->t);
   curves_ = std::make_unique<CsvStream>(curves, resume->t);
   // Its rows (the same columns: the settings are the checkpoint's) are the step records.

@@ -162,6 +162,37 @@ TEST_CASE("a restart from a checkpoint whose pairs are other mesh nodes is refus
   fs::remove_all(dir);
 }
 
+TEST_CASE("a restart whose CSV lost the rows up to the checkpoint is refused, both CSVs untouched", "[restart]") {
+  // The checkpoint survived, the end of curves.csv did not (a power cut, a copy cut short):
+  // a restart would leave a gap in time that no later step fills.
+  const std::string dir = fs::temp_directory_path() / "rccm_restart_short_csv";
+  const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
+  request_stop(0);
+  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
+  request_stop(0);
+  std::vector<std::string> rows;
+  {
+    std::ifstream in(dir + "/curves.csv");
+    for (std::string l; std::getline(in, l);) rows.push_back(l);
+  }
+  REQUIRE(rows.size() > 30);
+  {
+    std::ofstream out(dir + "/curves.csv");  // the first 20 steps only
+    for (std::size_t k = 0; k < 21; ++k) out << rows[k] << "\n";
+  }
+  {  // and a row after the checkpoint in history.csv, which taking it up would drop
+    std::ofstream out(dir + "/history.csv", std::ios::app);
+    out << "99" << rows.back().substr(rows.back().find(',')) << "\n";
+  }
+  const std::size_t history = lines(dir + "/history.csv");
+  CHECK_THROWS_WITH(run(b1(dir, euler), true),
+                    Catch::Contains("curves.csv: its rows end at t = ") && Catch::Contains("before the checkpoint's t = ") &&
+                        Catch::Contains("run afresh with --force"));
+  CHECK(lines(dir + "/history.csv") == history);  // refused before either file was cut at the checkpoint
+  CHECK(lines(dir + "/curves.csv") == 21);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   const std::string dir = fs::temp_directory_path() / "rccm_checkpoint_bits";
   fs::create_directories(dir);

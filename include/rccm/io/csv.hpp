@@ -27,8 +27,11 @@ class CsvStream {
  public:
   /// Creates `path` with its header line.
   CsvStream(const std::string& path, const std::vector<std::string>& header);
-  /// Takes up `path` as an earlier run left it: keeps its header and its complete rows whose
-  /// first field (the time) is at most `t`, drops the rest, then appends.
+  /// The lines of `path` as an earlier run left it, to take it up at its checkpoint's time
+  /// `t`: the header and the complete rows whose first field (the time) is at most `t`.
+  /// Throws InputError when they end before `t` (rows lost: a restart cannot rebuild them).
+  static std::vector<std::string> lines_until(const std::string& path, double t);
+  /// Takes up `path` at time `t`: its lines_until(path, t) kept, the rest dropped, then appends.
   CsvStream(const std::string& path, double t);
   /// Appends a row of numbers. Throws WriteError naming the file when it cannot.
   void append(const std::vector<double>& row);
