@@ -57,6 +57,13 @@ for args in "sweep $b1 --set interface.alpha=1,2 -j 0" "compare $b1 --euler-step
   check; "$rccm" $args >/dev/null 2>"$work/err"; rc=$?
   [ "$rc" -eq 2 ] && [ "$(head -1 "$work/err" | wc -c)" -lt 80 ] || fail "$args: exit $rc, $(head -c 300 "$work/err")"
 done
+# A table that could not be kept is refused before the minutes of the benchmark (timed out if not).
+check; timeout 10 "$rccm" bench --csv "$work/none/table.csv" >/dev/null 2>"$work/err"; rc=$?
+[ "$rc" -eq 2 ] && grep -q "bench --csv $work/none/table.csv: cannot write into '$work/none'" "$work/err" \
+  || fail "bench --csv into no directory: exit $rc, $(cat "$work/err")"
+check; timeout 10 "$rccm" bench --json "$work" >/dev/null 2>"$work/err"; rc=$?
+[ "$rc" -eq 2 ] && grep -q "bench --json $work: a directory, not a file" "$work/err" \
+  || fail "bench --json onto a directory: exit $rc, $(cat "$work/err")"
 check; "$rccm" run "$src/config" >/dev/null 2>"$work/err"; rc=$?
 [ "$rc" -eq 2 ] && grep -q "config: a directory, not a config file" "$work/err" || fail "run DIR: exit $rc, $(cat "$work/err")"
 check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rccm --version: $("$rccm" --version)"

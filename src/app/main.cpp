@@ -190,6 +190,8 @@ int main(int argc, char** argv) {
                              app.get_subcommands().front()->get_name() + "` as one process");
     if (*bench) {
       const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
+      if (!bench_csv.empty()) rccm::check_output_file(bench_csv, "bench --csv");  // before the minutes of the cases
+      if (!bench_json.empty()) rccm::check_output_file(bench_json, "bench --json");
       if ((scale_levels > 0 || scale3d_levels > 0) && linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
         throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
       std::ostream nowhere(nullptr);  // every process runs the cases, process 0 prints

@@ -250,6 +250,12 @@ class Reader {
     if (it != index_.end()) return it->second;
     std::vector<double> x, param;
     gmsh::model::mesh::getNode(tag, x, param);
+    if (!(std::abs(x[0]) < 1e15 && std::abs(x[1]) < 1e15 && std::abs(x[2]) < 1e15)) {  // NaN too; as mesh.size
+      std::ostringstream m;
+      m << "node " << tag << " lies at (" << x[0] << ", " << x[1] << ", " << x[2]
+        << "): the mesh must lie within 1e15 mm of 0";
+      fail(m.str());
+    }
     if (m_.dim == 2 && std::abs(x[2]) > 1e-12 * (1 + std::abs(x[0]) + std::abs(x[1]))) {
       std::ostringstream m;
       m << "node " << tag << " lies at z = " << x[2] << ": a 2D mesh lies in the plane z = 0";

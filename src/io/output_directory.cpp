@@ -127,4 +127,12 @@ DirectoryLock::~DirectoryLock() {
   ::close(fd_);  // releases the lock; the empty .lock file stays (removing it would race)
 }
 
+void check_output_file(const std::string& path, const std::string& option) {
+  std::error_code ec;
+  const fs::path file(path), dir = file.has_parent_path() ? file.parent_path() : fs::path(".");
+  if (fs::is_directory(file, ec)) throw InputError(option + " " + path + ": a directory, not a file");
+  if (!fs::is_directory(dir, ec) || !writable(dir))
+    throw InputError(option + " " + path + ": cannot write into '" + dir.string() + "' (not a writable directory)");
+}
+
 }  // namespace rccm

@@ -167,6 +167,9 @@ TEST_CASE("gmsh: a bad mesh file is refused, naming the file and the physical gr
           "Physical Surface 'plate' has Triangle 6 cells: rccm reads linear triangles (T3) and quadrangles (Q4); mesh with "
           "Mesh.ElementOrder = 1");
   refused(geo("syntax.geo", "Point(1) = {0, 0, 0\n"), "syntax error");
+  // A coordinate that is no number, or beyond what an assembly can square (as mesh.size).
+  refused(fixtures + "node_z_nan.msh", "node 3 lies at (10, 2, nan): the mesh must lie within 1e15 mm of 0");
+  refused(fixtures + "node_x_huge.msh", "node 2 lies at (1e+308, 0, 0): the mesh must lie within 1e15 mm of 0");
   refused(geo("clash.geo", std::string(square) + "Physical Surface(\"plate\") = {1};\nPhysical Curve(\"plate\") = {1};\n"),
           "Physical Curve 'plate' has the name of another physical group");
   refused(geo("left_out.geo", std::string(square) + R"(

@@ -20,6 +20,11 @@ bool holds_complete_run(const std::string& directory);
 /// or written, or already holds the results of a run and `force` is false. Creates nothing.
 void check_output_directory(const Config& cfg, bool force);
 
+/// Refuses (InputError, `option` named) a file that could not be written at `path`: its
+/// directory missing or not writable, or a directory in its place. Checked before the work
+/// whose result it would keep.
+void check_output_file(const std::string& path, const std::string& option);
+
 /// Holds an exclusive lock on DIR/.lock while alive (DIR exists); throws InputError
 /// "<where>: another rccm run is writing into 'DIR' now; ..." when another process holds it.
 class DirectoryLock {
