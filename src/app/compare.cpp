@@ -2,6 +2,7 @@
 
 #include "rccm/base/errors.hpp"
 #include "rccm/contact/contact_solver.hpp"
+#include "rccm/io/csv.hpp"
 #include "rccm/io/run_report.hpp"
 
 #include <algorithm>
@@ -26,12 +27,6 @@ ContactMethod solver_of(const std::string& name) {
   for (ContactMethod m : {ContactMethod::Bipotential, ContactMethod::Rccm, ContactMethod::Newton})
     if (name == contact_method_name(m)) return m;
   throw InputError("--solvers: unknown contact solver '" + name + "' (bipotential, rccm, newton)");
-}
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
 }
 
 /// The paper's ratios of total CPU, RCCM (GYPTIS90) over bipotential (SYMEF): Tables 1 and 2.

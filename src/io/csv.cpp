@@ -58,6 +58,12 @@ CsvStream::CsvStream(const std::string& path, const std::vector<std::string>& he
   write(csv_line(header));
 }
 
+std::string fmt(const char* format, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, format, v);
+  return buf;
+}
+
 std::vector<std::string> CsvStream::lines_until(const std::string& path, double t) {
   std::ifstream in(path);
   std::vector<std::string> lines(1);

@@ -1,6 +1,7 @@
 #include "rccm/io/run_report.hpp"
 
 #include "rccm/io/atomic_file.hpp"
+#include "rccm/io/csv.hpp"
 #include "rccm/base/errors.hpp"
 
 #include <nlohmann/json.hpp>
@@ -10,16 +11,6 @@
 #include <ostream>
 
 namespace rccm {
-
-namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-}  // namespace
 
 std::vector<const StepRecord*> paper_table_columns(const RunResult& r) {
   std::vector<const StepRecord*> cols;

@@ -92,6 +92,9 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     CHECK(std::abs(restarted.energy.external_work - scale) <= energy_tolerance * scale);
     CHECK(std::abs(restarted.energy.damage_dissipation - reference.energy.damage_dissipation) <= energy_tolerance * scale);
     CHECK(std::abs(restarted.peak_force[0] - reference.peak_force[0]) <= c.tolerance * std::abs(reference.peak_force[0]));
+    // The balance's round-off floor (sqrt(eps) w |Gamma_c|) is the model's, not the checkpoint's.
+    CHECK(reference.energy.round_off > 0);
+    CHECK(restarted.energy.round_off == reference.energy.round_off);
     // The files hold each accepted step once: what the stopped run wrote after its
     // checkpoint was replaced, not repeated.
     CHECK(restarted.steps.size() == static_cast<std::size_t>(restarted.integrator.steps + 1));

@@ -14,6 +14,8 @@ std::string csv_field(const std::string& text);
 
 /// A number with 12 significant digits (enough to read back what was computed to 1e-10).
 std::string csv_number(double v);
+/// `v` formatted by printf's `format` (one conversion of a double), for reports and messages.
+std::string fmt(const char* format, double v);
 
 /// The fields of one line.
 std::vector<std::string> csv_split(const std::string& line);
