@@ -149,6 +149,8 @@ check; [ "$rc" -eq 130 ] || fail "sweep SIGINT: exit $rc, want 130"
 [ -e "$out/alpha=2" ] && fail "sweep SIGINT: the next case started"
 grep -q '^alpha=1,1,interrupted' "$out/summary.csv" || fail "sweep SIGINT: summary.csv lacks the interrupted case"
 grep -q '^alpha=2,2,not run' "$out/summary.csv" || fail "sweep SIGINT: summary.csv lacks the case not run"
+check; grep "plots: tools/plot --overlay" "$work/sweep.out" | grep -q "alpha=1" && ! grep "plots: tools/plot --overlay" "$work/sweep.out" | grep -q "alpha=2" \
+  || fail "sweep SIGINT: the overlay command names a case not run: $(grep plots: "$work/sweep.out")"
 
 # ... and the same sweep again into its directory: refused (exit 2) naming the case, the
 # interrupted case's --restart suggested, summary.csv untouched.

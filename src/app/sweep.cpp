@@ -202,7 +202,9 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
 
 std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases) {
   std::string command = "tools/plot --overlay " + shell_quoted(directory);
-  for (const SweepCase& c : cases) command += " " + shell_quoted(c.config.output.directory);
+  for (const SweepCase& c : cases)  // those with results: not a case never started, or stopped while meshed
+    if (std::filesystem::exists(c.config.output.directory + "/curves.csv"))
+      command += " " + shell_quoted(c.config.output.directory);
   return command;
 }
 

@@ -266,8 +266,8 @@ void check_integer_literals(const std::string& text, const std::function<std::st
         const std::string digits = token.substr(std::min(token.find_first_not_of('0'), token.size() - 1));
         if (digits.size() > limit.size() || (digits.size() == limit.size() && digits > limit))
           throw InputError(where(line) + ": the integer " + (negative ? "-" : "") + token +
-                           " is beyond what libconfig reads (2147483647); write it as a number: " +
-                           (negative ? "-" : "") + token + ".0");
+                           " is beyond what libconfig reads as an integer (2147483647): a count must be below it, and a real "
+                           "number may be written with a decimal point (" + (negative ? "-" : "") + token + ".0)");
       }
       k = end - 1;
     }

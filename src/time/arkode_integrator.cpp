@@ -50,8 +50,9 @@ struct ArkodeIntegrator::Impl {
   std::exception_ptr stop;       // anything else thrown after an accepted step (a stop request, a failed write)
 
   ArkodeScheme scheme;
+  double fixed_step;  // > 0: ARKODE takes it without error control, its Newton failures cannot cut it
 
-  Impl(BetaSystem& o, const IntegratorParams& p, double T) : ode(o), scheme(p.scheme) {
+  Impl(BetaSystem& o, const IntegratorParams& p, double T) : ode(o), scheme(p.scheme), fixed_step(p.fixed_step) {
     const sunindextype n = ode.size();
     check(SUNContext_Create(nullptr, &ctx), "SUNContext_Create");
     y = check_ptr(N_VNew_Serial(n, ctx), "N_VNew_Serial");
@@ -208,6 +209,9 @@ void ArkodeIntegrator::advance(double t_out) {
                                            : ", or loosen integrator.rtol");
   else if (flag == ARK_REPTD_RHSFUNC_ERR || flag == ARK_UNREC_RHSFUNC_ERR)
     msg << "\n  ARKODE cut its step and the contact solve still failed: see the contact failure above";
+  else if ((flag == ARK_ERR_FAILURE || flag == ARK_CONV_FAILURE) && m.fixed_step > 0)
+    msg << "\n  the fixed step integrator.fixed_step = " << m.fixed_step << " s is too long for the Newton iteration "
+        << "of its stages here (a fixed step is not cut): take a smaller one, or leave it 0 (adaptive steps)";
   else if ((flag == ARK_ERR_FAILURE || flag == ARK_CONV_FAILURE) && adhesion_gone)
     msg << "\n  the step size collapsed as the adhesion went: the body may be nearly free; restrain it, reduce the "
            "load, or lower integrator.min_step";

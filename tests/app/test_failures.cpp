@@ -121,6 +121,18 @@ TEST_CASE("ARKODE cuts its step when a stage's contact solve fails, and says so 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a fixed ARKODE step too long for its stages' Newton iteration says so, not to lower min_step", "[failure]") {
+  // B1 in two fixed steps of 5 s: the stages' beta falls from 1 to 0 within one, Newton fails,
+  // and a fixed step is not cut: the message names the setting to change.
+  const std::string dir = fs::temp_directory_path() / "rccm_failure_fixed_step";
+  const Failure f = run_to_failure(load_config(RCCM_SOURCE_DIR "/config/b1.cfg",
+                                               {"output.directory=\"" + dir + "\"", "integrator.fixed_step=5.0"}));
+  CHECK_THAT(f.message, Catch::Contains("the fixed step integrator.fixed_step = 5 s is too long for the Newton "
+                                        "iteration of its stages here"));
+  CHECK_THAT(f.message, !Catch::Contains("lower integrator.min_step"));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a beta that is not finite stops the run where it appears: one out of [0, previous] is clamped and reported",
           "[failure]") {
   const Config cfg = test::config_from_text(R"(
