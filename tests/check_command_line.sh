@@ -140,6 +140,8 @@ out=$work/sweep
 "$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 -o "$out" >"$work/sweep.out" 2>&1 &
 pid=$!
 for _ in $(seq 100); do [ -f "$out/alpha=1/history.csv" ] && [ "$(wc -l < "$out/alpha=1/history.csv")" -gt 20 ] && break; sleep 0.1; done
+# ... its job list is there while it runs (a sweep killed halfway leaves it) ...
+check; [ "$(wc -l < "$out/jobs.txt" 2>/dev/null)" = 3 ] || fail "sweep: no jobs.txt while the cases run"
 # ... a second sweep into its directory meanwhile is refused (one sweep at a time there) ...
 "$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 --restart "$out" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 2 ] && grep -q "sweep --restart: another rccm run is writing into '$out' now" "$work/err" \

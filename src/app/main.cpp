@@ -81,8 +81,9 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   if (!lock) lock.emplace(directory, "sweep");
   std::cout << "# " << cases.size() << " cases on " << jobs << (jobs == 1 ? " thread" : " threads") << ", in " << directory << "\n";
   if (jobs > 1) rccm::blas_threads::keep_one();  // the cases' wide scopes would set the BLAS's threads for each other
+  rccm::write_sweep_jobs(directory, cases, rccm_path, config_file);
   rccm::run_sweep(cases, jobs, force);
-  rccm::write_sweep_summary(std::cout, directory, axes, cases, rccm_path, config_file);
+  rccm::write_sweep_summary(std::cout, directory, axes, cases);
   std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: "
             << rccm::overlay_command(directory, cases) << "\n";
   int status = 0;

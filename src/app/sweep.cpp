@@ -216,8 +216,7 @@ std::string resume_command(const std::string& rccm_path, const std::string& conf
 }
 
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
-                         const std::vector<SweepCase>& cases, const std::string& rccm_path,
-                         const std::string& config_file) {
+                         const std::vector<SweepCase>& cases) {
   // The output times are those of the config (every case has the same unless a case sweeps them).
   std::vector<double> times = cases.front().config.output.times;
   const double T = cases.front().config.time.T;
@@ -230,7 +229,7 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
   header.insert(header.end(), {"damage dissipation [N mm]", "friction dissipation [N mm]",
                                "energy imbalance (relative)", "steps", "wall [s]", "message"});
 
-  AtomicFile csv_file(directory + "/summary.csv"), jobs_file(directory + "/jobs.txt");
+  AtomicFile csv_file(directory + "/summary.csv");
   csv_file.stream() << csv_line(header) << "\n";
   // The table: the same figures, "-" where a case did not complete.
   char buf[64];
@@ -282,12 +281,18 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
       out << (f ? std::string(buf) : std::string(14, ' ') + "-");
     }
     out << (message.empty() ? "" : "   " + message) << "\n";
+  }
+  csv_file.commit();
+}
 
+void write_sweep_jobs(const std::string& directory, const std::vector<SweepCase>& cases, const std::string& rccm_path,
+                      const std::string& config_file) {
+  AtomicFile jobs_file(directory + "/jobs.txt");
+  for (const SweepCase& c : cases) {
     jobs_file.stream() << shell_quoted(rccm_path) << " run " << shell_quoted(config_file) << " -q";
     for (const std::string& o : c.overrides) jobs_file.stream() << " --set " << shell_quoted(o);
     jobs_file.stream() << " -o " << shell_quoted(directory + "/" + c.name) << "\n";
   }
-  csv_file.commit();
   jobs_file.commit();
 }
 

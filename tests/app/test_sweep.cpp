@@ -74,7 +74,8 @@ TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha"
   std::vector<SweepCase> cases = make_sweep_cases(b1, {}, axes, dir.string());
   run_sweep(cases, 2);
   std::ostringstream table;
-  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  write_sweep_summary(table, dir.string(), axes, cases);
+  write_sweep_jobs(dir.string(), cases, "rccm", b1);
   CHECK(lines(dir / "summary.csv") == 4);  // header and three rows
   CHECK(lines(dir / "jobs.txt") == 3);
   for (const SweepCase& c : cases) {
@@ -99,7 +100,7 @@ TEST_CASE("a sweep whose output times end at T: one column for T, each cell the 
   std::vector<SweepCase> cases = make_sweep_cases(b1, {"output.times=[3.571, 10.0]"}, axes, dir.string());
   run_sweep(cases, 1);
   std::ostringstream table;
-  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  write_sweep_summary(table, dir.string(), axes, cases);
   const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
   CHECK(std::count(summary.header.begin(), summary.header.end(), "debonded at t=10 [mm]") == 1);
   REQUIRE(summary.rows.size() == 2);
@@ -129,7 +130,7 @@ TEST_CASE("a sweep's complete case that warned says so in its row", "[sweep]") {
   REQUIRE(cases[0].status == CaseStatus::Complete);
   REQUIRE(!cases[0].result.warnings.empty());
   std::ostringstream table;
-  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  write_sweep_summary(table, dir.string(), axes, cases);
   const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
   CHECK(summary.rows.at(0).at(2) == "complete");
   CHECK_THAT(summary.rows.at(0).back(), Catch::StartsWith("warning: explicit Euler was unstable"));
@@ -147,7 +148,7 @@ TEST_CASE("a sweep's rate-independent case says its imbalance is released in sna
   REQUIRE(cases[0].status == CaseStatus::Complete);
   REQUIRE(cases[1].status == CaseStatus::Complete);
   std::ostringstream table;
-  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  write_sweep_summary(table, dir.string(), axes, cases);
   const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
   // B1 snaps through at alpha = 0: most of w's work is released in the jumps (README: 0.79),
   // while the viscous case closes its balance to the integrator's accuracy.
@@ -174,7 +175,7 @@ TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the fa
                        axes, dir.string());
   run_sweep(cases, 1);
   std::ostringstream table;
-  write_sweep_summary(table, dir.string(), axes, cases, "rccm", b1);
+  write_sweep_summary(table, dir.string(), axes, cases);
   REQUIRE(cases[0].status == CaseStatus::Failed);
   CHECK(cases[3].status == CaseStatus::Complete);
   const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
@@ -190,6 +191,7 @@ TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the fa
   CHECK(summary.rows[3][3] == "complete");
   CHECK(std::stod(summary.rows[3][4]) > 0);
   // The job list reruns each case on its own, quoted for the shell.
+  write_sweep_jobs(dir.string(), cases, "rccm", b1);
   std::ifstream jobs(dir / "jobs.txt");
   std::string first;
   std::getline(jobs, first);
@@ -211,7 +213,7 @@ TEST_CASE("a resumed sweep keeps its complete cases and restarts its stopped one
   std::vector<SweepCase> reference = make_sweep_cases(b1, fixed, axes, whole.string());
   run_sweep(reference, 2);
   std::ostringstream table;
-  write_sweep_summary(table, whole.string(), axes, reference, "rccm", b1);
+  write_sweep_summary(table, whole.string(), axes, reference);
 
   // alpha = 1 completes, alpha = 10 is stopped at step 170 (a Ctrl-C), alpha = 100 never starts.
   std::vector<SweepCase> cases = make_sweep_cases(b1, fixed, axes, parts.string());
@@ -253,7 +255,7 @@ TEST_CASE("a resumed sweep keeps its complete cases and restarts its stopped one
   CHECK(cases[1].start == CaseStart::Restart);
   CHECK(cases[2].start == CaseStart::Fresh);
   run_sweep(cases, 2);
-  write_sweep_summary(table, parts.string(), axes, cases, "rccm", b1);
+  write_sweep_summary(table, parts.string(), axes, cases);
   CHECK(test::read_text((parts / "alpha=1" / "history.csv").string()) == kept);  // not run again
   // A report.json that says the run did not complete, beside a report.txt that says it did, is
   // no complete case.

@@ -73,9 +73,14 @@ std::string resume_command(const std::string& rccm_path, const std::string& conf
                            const std::vector<std::string>& overrides, int jobs, const std::string& directory);
 
 /// summary.csv (one row per case: its value of each axis, its status, its figures, empty
-/// cells where a case did not complete) and jobs.txt in `directory`, and the table on `out`.
+/// cells where a case did not complete) in `directory`, and the table on `out`.
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
-                         const std::vector<SweepCase>& cases, const std::string& rccm_path,
-                         const std::string& config_file);
+                         const std::vector<SweepCase>& cases);
+
+/// jobs.txt in `directory`: one `rccm run` line per case (the same study on a cluster).
+/// Written before the cases run: a sweep killed halfway leaves it, and its directory is
+/// known as a sweep's.
+void write_sweep_jobs(const std::string& directory, const std::vector<SweepCase>& cases, const std::string& rccm_path,
+                      const std::string& config_file);
 
 }  // namespace rccm
