@@ -9,7 +9,7 @@ checked on its results RUN_DIR by what must hold for any right program:
   3. beta never grows at a node from one output time to the next; the debonded area never
      shrinks (curves.csv); the energy balance closes (1e-3 of the external work);
   4. tools/plot's force figure leaves out the base's x and z reactions, which stay at
-     round-off, and names them in its title.
+     round-off, and names them in its title; tiny displacements are drawn in 10^k mm.
 Skipped (77) without numpy and matplotlib.
 Usage: check_coating3d.py RUN_DIR TOOLS_PLOT"""
 import csv
@@ -87,5 +87,7 @@ if fig is not None:
     check(not any("sub_base.x" in s or "sub_base.z" in s for s in titles), f"a round-off reaction is drawn: {titles}")
     check(any("sub_base.y" in s for s in titles), f"the base's F_y is not drawn: {titles}")
     check("round-off" in fig._suptitle.get_text(), "the title does not name the reactions left out")
+# Tiny displacements are drawn in units of their decade (the axis' offset text hit its label).
+check(plot.decade(np.array([0.0, 5.8e-5])) == -5 and plot.decade(np.array([-0.3])) == 0, "decade()")
 print(f"{checks} checks, {failures} failures")
 sys.exit(1 if failures else 0)
