@@ -477,6 +477,9 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
   return p;
 }
 
+/// A modulus above this (MPa; a billion times diamond's) is a typo, and its stiffness overflows.
+constexpr double max_modulus = 1e15;
+
 MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12; 3D: G13, G23)");
   MaterialParams p;
@@ -488,6 +491,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
     r.check(p.E > 0, mat["E"], "must be > 0", p.E);
+    r.check(p.E <= max_modulus, mat["E"], "must be at most 1e15 MPa (beyond, the stiffness overflows)", p.E);
     p.nu = r.number(mat, "nu");
     r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
     return p;
@@ -496,6 +500,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   for (auto [name, v] : {std::pair<const char*, double*>{"E1", &p.E1}, {"E2", &p.E2}, {"E3", &p.E3}, {"G12", &p.G12}}) {
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);
+    r.check(*v <= max_modulus, mat[name], "must be at most 1e15 MPa (beyond, the stiffness overflows)", *v);
   }
   // The out-of-plane shears: a 3D body needs them, a plane one does not use them.
   for (auto [name, v] : {std::pair<const char*, double*>{"G13", &p.G13}, {"G23", &p.G23}}) {
@@ -504,6 +509,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     if (!mat.exists(name)) r.fail(mat, std::string("missing setting '") + name + "': a 3D orthotropic body needs G12, G13 and G23");
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);
+    r.check(*v <= max_modulus, mat[name], "must be at most 1e15 MPa (beyond, the stiffness overflows)", *v);
   }
   p.nu12 = r.number(mat, "nu12");
   p.nu13 = r.number(mat, "nu13");
