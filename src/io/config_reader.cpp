@@ -52,6 +52,13 @@ std::string type_name(const Setting& s) {
   }
 }
 
+/// The file a setting or a syntax error comes from, as a path from the working directory:
+/// libconfig names an @include'd file as the line wrote it, relative to the top config's directory.
+std::string source_path(const char* source, const std::string& top) {
+  if (!source || source == top || source[0] == '/') return source ? source : top;
+  return (std::filesystem::path(top).parent_path() / source).string();
+}
+
 /// Turns libconfig settings into values, with "file:line: path: message" errors.
 class Reader {
  public:
@@ -65,7 +72,7 @@ class Reader {
     else if (s.getSourceLine() == 0)
       msg << "--set " << path << ": " << what;
     else
-      msg << (s.getSourceFile() ? s.getSourceFile() : file_) << ":" << s.getSourceLine()
+      msg << source_path(s.getSourceFile(), file_) << ":" << s.getSourceLine()
           << ": " << path << ": " << what;
     throw InputError(msg.str());
   }
@@ -872,7 +879,7 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
 }
 
 InputError syntax_error(const libconfig::ParseException& e, const std::string& path) {
-  return InputError(std::string(e.getFile() ? e.getFile() : path.c_str()) + ":" + std::to_string(e.getLine()) +
+  return InputError(source_path(e.getFile(), path) + ":" + std::to_string(e.getLine()) +
                     ": syntax error: " + syntax_hint(e.getError()));
 }
 

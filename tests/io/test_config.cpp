@@ -106,5 +106,12 @@ time = { T = 1.0; };
   CHECK_NOTHROW(c = load_config("sub/main.cfg"));
   fs::current_path(cwd);
   CHECK(c.bodies.at(0).material.E == 1000.0);
+  // An error in the included file names it as a path from where rccm runs, to open it there.
+  std::ofstream(dir / "sub" / "material.cfg") << "material = { E = -1000; nu = 0.3; };\n";
+  fs::current_path(dir);
+  CHECK_THROWS_WITH(load_config("sub/main.cfg"), Catch::StartsWith("sub/material.cfg:1: material.E: must be > 0"));
+  std::ofstream(dir / "sub" / "material.cfg") << "material = { E = ; nu = 0.3; };\n";
+  CHECK_THROWS_WITH(load_config("sub/main.cfg"), Catch::StartsWith("sub/material.cfg:1: syntax error"));
+  fs::current_path(cwd);
   fs::remove_all(dir);
 }
