@@ -87,6 +87,7 @@ class RecordReader {
     std::string line;
     ++line_;
     if (!std::getline(in_, line)) fail(std::string("'") + name + "', found the end of the file");
+    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF line ends (a copy through another system)
     std::istringstream s(line);
     std::string word;
     if (!(s >> word) || word != name) fail(std::string("'") + name + "'");

@@ -247,6 +247,14 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   CHECK(r.progress.snapshots[0].u == c.state.u);
   CHECK(r.progress.snapshots[0].debonded_length == 11.7);
   CHECK_FALSE(fs::exists(checkpoint_path(dir) + ".tmp"));
+  // The same file with CRLF line ends (copied through another system) reads back the same.
+  std::string text = test::read_text(checkpoint_path(dir)), crlf;
+  for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  std::ofstream(checkpoint_path(dir), std::ios::binary) << crlf;
+  const Checkpoint w = read_checkpoint(dir, cfg);
+  CHECK(w.state.beta == c.state.beta);
+  CHECK(w.state.u == c.state.u);
+  CHECK(w.diagnostics == c.diagnostics);
   fs::remove_all(dir);
 }
 
