@@ -8,7 +8,8 @@
 #     whose report says STOPPED added: exit 0, both skipped with a note, OUT_DIR created;
 #  3. nothing but non-result arguments, or no run directory at all: exit non-zero with a
 #     message, no figure written;
-#  4. a case alpha = 0 is labelled rate-independent, without the integrator it did not use.
+#  4. a case alpha = 0 is labelled rate-independent, without the integrator it did not use;
+#  5. its energy panel draws, for alpha = 0, the work released in snap-through (dashed).
 # Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
@@ -100,6 +101,33 @@ print("" if ok else f"labels: {zero!r}, {one!r}, {solver!r}")
 sys.exit(0 if ok else 1)
 EOF
 then pass; else fail "case labels"; fi
+
+# 5. Panel (d): the rate-independent case's energy is the work released in its snap-throughs
+#    (curves.csv's imbalance), dashed, named in the title; the viscous cases' is the damage's.
+if $py - "$plot" "${cases[@]}" <<'EOF'
+import csv, importlib.machinery, importlib.util, json, os, sys
+loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
+plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
+loader.exec_module(plot)
+drawn = {}
+plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+plot.overlay("/nonexistent-unused", sys.argv[2:])
+energy = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(d)")][0]
+problems = []
+for d in sys.argv[2:]:
+    rows = list(csv.DictReader(open(os.path.join(d, "curves.csv"))))
+    independent = "released_in_snap_through" in json.load(open(os.path.join(d, "report.json")))["energy"]
+    column = "imbalance [N mm]" if independent else "damage dissipation [N mm]"
+    want = [float(r[column]) for r in rows]
+    style = "--" if independent else "-"
+    if not any(l.get_linestyle() == style and list(l.get_ydata()) == want for l in energy.get_lines()):
+        problems.append(f"{d}: no {style} line of its {column}")
+if "snap-through" not in energy.get_title(loc="left"):
+    problems.append("the title does not say what the dashed line is")
+print("; ".join(problems))
+sys.exit(1 if problems else 0)
+EOF
+then pass; else fail "panel (d)"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
