@@ -56,6 +56,7 @@ check(np.all(np.diff(curves["debonded area [mm2]"]) >= 0), "the debonded area sh
 work = curves["external work [N mm]"][-1]
 check(abs(curves["imbalance [N mm]"][-1]) <= 1e-3 * work, "the energy balance does not close")
 
+measured = {"sum r_n + F": 0.0, "mirror": 0.0}  # the largest, relative to the peak force / absolute
 previous = None
 snapshots = sorted(glob.glob(os.path.join(run_dir, "interface_t*.csv")), key=lambda p: read(p)["t [s]"][0])
 check(len(snapshots) >= 3, f"{len(snapshots)} interface CSVs, want t = 0 ... T")
@@ -63,11 +64,13 @@ for path in snapshots:
     c = read(path)
     t = c["t [s]"][0]
     row = int(np.argmin(np.abs(curves["t [s]"] - t)))
+    measured["sum r_n + F"] = max(measured["sum r_n + F"], abs(c["r_n [N]"].sum() + F[row]) / scale)
     check(abs(c["r_n [N]"].sum() + F[row]) <= 1e-8 * scale, f"t = {t}: sum r_n = {c['r_n [N]'].sum()}, F = {F[row]}")
     for k in ("r_t1 [N]", "r_t2 [N]"):
         check(abs(c[k].sum()) <= 1e-8 * scale, f"t = {t}: sum {k} = {c[k].sum()}")
     beta = {(round(x, 9), round(z, 9)): b for x, z, b in zip(c["x [mm]"], c["z [mm]"], c["beta"])}
     mirror = max(abs(b - beta.get((x, round(W - z, 9)), np.inf)) for (x, z), b in beta.items())
+    measured["mirror"] = max(measured["mirror"], mirror)
     check(mirror <= 1e-9, f"t = {t}: beta differs from its mirror image about z = W/2 by {mirror}")
     if previous is not None:
         check(np.all(c["beta"] <= previous + 1e-12), f"t = {t}: beta grew at a node")
@@ -89,5 +92,7 @@ if fig is not None:
     check("round-off" in fig._suptitle.get_text(), "the title does not name the reactions left out")
 # Tiny displacements are drawn in units of their decade (the axis' offset text hit its label).
 check(plot.decade(np.array([0.0, 5.8e-5])) == -5 and plot.decade(np.array([-0.3])) == 0, "decade()")
+print(f"measured: |sum r_n + F| / max |F| {measured['sum r_n + F']:.1e}, beta's mirror difference "
+      f"{measured['mirror']:.1e}, relative energy imbalance {abs(curves['imbalance [N mm]'][-1]) / work:.1e}")
 print(f"{checks} checks, {failures} failures")
 sys.exit(1 if failures else 0)

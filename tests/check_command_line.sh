@@ -130,6 +130,11 @@ if mount -t tmpfs -o size=96k tmpfs "$work/full" 2>/dev/null; then
   check; "$rccm" run "$b1" -q -o "$work/full/run" >/dev/null 2>"$work/err"; rc=$?
   [ "$rc" -eq 3 ] && grep -qE "cannot (write|append to) .*\(No space left on device\)" "$work/err" && ! grep -q "ARKODE" "$work/err" \
     || fail "disk full under ARKODE: exit $rc, $(cat "$work/err")"
+  # ... and once there is room again, the restart goes on from the last checkpoint whose rows
+  # were written (not from the step whose rows failed: the CSVs would end before it).
+  mount -o remount,size=20M "$work/full"
+  check; "$rccm" run "$b1" -q --restart "$work/full/run" >/dev/null 2>"$work/err"; rc=$?
+  [ "$rc" -eq 0 ] && grep -q "status: complete" "$work/full/run/report.txt" || fail "restart after a full disk: exit $rc, $(cat "$work/err")"
   umount "$work/full"
 else
   echo "note: the full-disk case is skipped (no tmpfs mount here)"
@@ -183,6 +188,15 @@ cp "$work/sw2/summary.csv" "$work/summary.before"
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.alpha=3,4 -o "$work/sw2" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 2 ] && grep -q "holds the summary.csv of an earlier sweep" "$work/err" && [ ! -e "$work/sw2/alpha=3" ] \
   && cmp -s "$work/sw2/summary.csv" "$work/summary.before" || fail "a sweep over an earlier one: exit $rc, $(cat "$work/err")"
+# ... and with --force: the earlier summary goes before the cases run (not left beside the new job list).
+"$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=5,6 --force -o "$work/sw2" >/dev/null 2>&1 &
+pid=$!
+for _ in $(seq 100); do [ -f "$work/sw2/alpha=5/history.csv" ] && break; sleep 0.1; done
+check; [ -e "$work/sw2/summary.csv" ] && fail "sweep --force: the earlier summary.csv still there while the cases run"
+kill -s INT "$pid"; wait "$pid"
+# A sweep none of whose cases has results prints no overlay command that would plot nothing.
+"$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.boundary=nowhere,nothere -o "$work/sw3" >"$work/out" 2>&1; rc=$?
+check; [ "$rc" -eq 3 ] && grep -q "plots: none (no case has results)" "$work/out" || fail "a sweep without results: exit $rc, $(cat "$work/out")"
 
 # 7. A second SIGINT: at once, without waiting for the step (B1 refined 16 times: steps of ~0.1 s).
 out=$work/twice

@@ -1,8 +1,8 @@
 #include "rccm/app/compare.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/format.hpp"
 #include "rccm/contact/contact_solver.hpp"
-#include "rccm/io/csv.hpp"
 #include "rccm/io/run_report.hpp"
 
 #include <algorithm>

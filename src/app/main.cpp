@@ -81,11 +81,13 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   if (!lock) lock.emplace(directory, "sweep");
   std::cout << "# " << cases.size() << " cases on " << jobs << (jobs == 1 ? " thread" : " threads") << ", in " << directory << "\n";
   if (jobs > 1) rccm::blas_threads::keep_one();  // the cases' wide scopes would set the BLAS's threads for each other
+  if (force) std::filesystem::remove(std::filesystem::path(directory) / "summary.csv");  // not beside the new job list
   rccm::write_sweep_jobs(directory, cases, rccm_path, config_file);
   rccm::run_sweep(cases, jobs, force);
   rccm::write_sweep_summary(std::cout, directory, axes, cases);
+  const std::string overlay = rccm::overlay_command(directory, cases);
   std::cout << "# " << directory << "/summary.csv, " << directory << "/jobs.txt; plots: "
-            << rccm::overlay_command(directory, cases) << "\n";
+            << (overlay.empty() ? "none (no case has results)" : overlay) << "\n";
   int status = 0;
   for (const rccm::SweepCase& c : cases) {
     if (c.status == rccm::CaseStatus::Interrupted || c.status == rccm::CaseStatus::NotRun) {
@@ -191,8 +193,8 @@ int main(int argc, char** argv) {
                              app.get_subcommands().front()->get_name() + "` as one process");
     if (*bench) {
       const rccm::LinearSolver linear = linear_solvers.at(bench_linear);
-      if (!bench_csv.empty()) rccm::check_output_file(bench_csv, "bench --csv");  // before the minutes of the cases
-      if (!bench_json.empty()) rccm::check_output_file(bench_json, "bench --json");
+      if (root && !bench_csv.empty()) rccm::check_output_file(bench_csv, "bench --csv");  // before the minutes of the cases
+      if (root && !bench_json.empty()) rccm::check_output_file(bench_json, "bench --json");  // (process 0 writes them)
       if ((scale_levels > 0 || scale3d_levels > 0) && linear == rccm::LinearSolver::Cholmod && rccm::parallel::size() > 1)
         throw rccm::InputError("bench --linear cholmod solves in one process; under mpirun use mumps or cg-gamg");
       std::ostream nowhere(nullptr);  // every process runs the cases, process 0 prints

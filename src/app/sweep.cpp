@@ -201,11 +201,11 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
 }
 
 std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases) {
-  std::string command = "tools/plot --overlay " + shell_quoted(directory);
+  std::string runs;
   for (const SweepCase& c : cases)  // those with results: not a case never started, or stopped while meshed
     if (std::filesystem::exists(c.config.output.directory + "/curves.csv"))
-      command += " " + shell_quoted(c.config.output.directory);
-  return command;
+      runs += " " + shell_quoted(c.config.output.directory);
+  return runs.empty() ? "" : "tools/plot --overlay " + shell_quoted(directory) + runs;
 }
 
 std::string resume_command(const std::string& rccm_path, const std::string& config_file,

@@ -53,10 +53,13 @@ std::string type_name(const Setting& s) {
 }
 
 /// The file a setting or a syntax error comes from, as a path from the working directory:
-/// libconfig names an @include'd file as the line wrote it, relative to the top config's directory.
+/// libconfig 1.5 names an @include'd file as the line wrote it, relative to the top config's
+/// directory (later versions put that directory in front themselves).
 std::string source_path(const char* source, const std::string& top) {
-  if (!source || source == top || source[0] == '/') return source ? source : top;
-  return (std::filesystem::path(top).parent_path() / source).string();
+  const std::filesystem::path dir = std::filesystem::path(top).parent_path();
+  if (!source || source == top || source[0] == '/' || dir.empty() || std::string(source).rfind(dir.string() + "/", 0) == 0)
+    return source ? source : top;
+  return (dir / source).string();
 }
 
 /// Turns libconfig settings into values, with "file:line: path: message" errors.
@@ -484,8 +487,12 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
   return p;
 }
 
-/// A modulus above this (MPa; a billion times diamond's) is a typo, and its stiffness overflows.
+/// A modulus (MPa) or an interface stiffness (MPa/mm) above this is a typo (a billion times
+/// diamond's Young's modulus), and the stiffness assembled from it overflows.
 constexpr double max_modulus = 1e15;
+void check_modulus(const Reader& r, const Setting& s, double value, const char* unit) {
+  r.check(value <= max_modulus, s, std::string("must be at most 1e15 ") + unit + " (beyond, the stiffness overflows)", value);
+}
 
 MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12; 3D: G13, G23)");
@@ -498,7 +505,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
     r.check(p.E > 0, mat["E"], "must be > 0", p.E);
-    r.check(p.E <= max_modulus, mat["E"], "must be at most 1e15 MPa (beyond, the stiffness overflows)", p.E);
+    check_modulus(r, mat["E"], p.E, "MPa");
     p.nu = r.number(mat, "nu");
     r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
     return p;
@@ -507,7 +514,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   for (auto [name, v] : {std::pair<const char*, double*>{"E1", &p.E1}, {"E2", &p.E2}, {"E3", &p.E3}, {"G12", &p.G12}}) {
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);
-    r.check(*v <= max_modulus, mat[name], "must be at most 1e15 MPa (beyond, the stiffness overflows)", *v);
+    check_modulus(r, mat[name], *v, "MPa");
   }
   // The out-of-plane shears: a 3D body needs them, a plane one does not use them.
   for (auto [name, v] : {std::pair<const char*, double*>{"G13", &p.G13}, {"G23", &p.G23}}) {
@@ -516,7 +523,7 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     if (!mat.exists(name)) r.fail(mat, std::string("missing setting '") + name + "': a 3D orthotropic body needs G12, G13 and G23");
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);
-    r.check(*v <= max_modulus, mat[name], "must be at most 1e15 MPa (beyond, the stiffness overflows)", *v);
+    check_modulus(r, mat[name], *v, "MPa");
   }
   p.nu12 = r.number(mat, "nu12");
   p.nu13 = r.number(mat, "nu13");
@@ -601,8 +608,10 @@ InterfaceParams read_interface(const Reader& r, const Setting& in, int dim) {
     r.fail(in["g0"], "the gap of a circle or of two bodies comes from their geometry: leave g0 out");
   p.Cn = r.number(in, "Cn");
   r.check(p.Cn > 0, in["Cn"], "must be > 0", p.Cn);
+  check_modulus(r, in["Cn"], p.Cn, "MPa/mm");
   p.Ct = r.number(in, "Ct");
   r.check(p.Ct > 0, in["Ct"], "must be > 0", p.Ct);
+  check_modulus(r, in["Ct"], p.Ct, "MPa/mm");
   p.w = r.number(in, "w");
   r.check(p.w >= 0, in["w"], "must be >= 0", p.w);
   p.alpha = r.number(in, "alpha", p.alpha);

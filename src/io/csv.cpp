@@ -58,20 +58,19 @@ CsvStream::CsvStream(const std::string& path, const std::vector<std::string>& he
   write(csv_line(header));
 }
 
-std::string fmt(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-std::vector<std::string> CsvStream::lines_until(const std::string& path, double t) {
+CsvStream::Kept CsvStream::lines_until(const std::string& path, double t) {
   std::ifstream in(path);
   std::vector<std::string> lines(1);
   if (!std::getline(in, lines[0])) throw InputError(path + ": the result file to take up is missing or empty");
+  const auto strip = [](std::string& line) {  // CRLF line ends (a copy through another system): appended rows end in LF
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+  };
+  strip(lines[0]);
   const std::size_t columns = csv_split(lines[0]).size();
   const double eps = 1e-9 * std::max(1.0, std::abs(t));
   double last = -std::numeric_limits<double>::infinity();
   for (std::string line; std::getline(in, line);) {
+    strip(line);
     const std::vector<std::string> fields = csv_split(line);
     char* end = nullptr;
     const double time = std::strtod(fields[0].c_str(), &end);
@@ -87,14 +86,14 @@ std::vector<std::string> CsvStream::lines_until(const std::string& path, double 
       << "restart cannot rebuild them; run afresh with --force";
     throw InputError(m.str());
   }
-  return lines;
+  return {lines};
 }
 
-CsvStream::CsvStream(const std::string& path, double t) : path_(path) {
+CsvStream::CsvStream(const std::string& path, const Kept& kept) : path_(path) {
   {
-    AtomicFile kept(path);
-    for (const std::string& line : lines_until(path, t)) kept.stream() << line << "\n";
-    kept.commit();
+    AtomicFile file(path);
+    for (const std::string& line : kept.lines) file.stream() << line << "\n";
+    file.commit();
   }
   out_.open(path, std::ios::app);
   if (!out_) throw WriteError("cannot append to " + path + " (" + std::strerror(errno) + ")");

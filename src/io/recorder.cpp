@@ -1,12 +1,14 @@
 #include "rccm/io/recorder.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/io/checkpoint.hpp"
 #include "rccm/io/csv.hpp"
 #include "rccm/io/output_directory.hpp"
 #include "rccm/io/run_report.hpp"
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <ostream>
 
 namespace rccm {
@@ -107,6 +109,7 @@ void Recorder::start(BetaOde& ode) {
   result_.snapshots = p.snapshots;
   if (writer_) result_.steps = writer_->resumed_steps();  // processes other than 0 write nothing (la/parallel.hpp)
   result_.restarted_at = resume_->state.t;
+  rows_step_ = resume_->step;
   result_.peak_force = p.peak_force;
   result_.peak_time = p.peak_time;
   earlier_ = p.integrator;
@@ -137,6 +140,7 @@ void Recorder::step(const AcceptedStep& a) {
   result_.steps.push_back({a.step, a.t, a.dt, a.counts.contact_solves, a.counts.sweeps_per_solve(),
                            a.counts.max_sweeps, a.cpu_seconds});
   if (writer_) writer_->step(a, body_, energy_->terms());
+  rows_step_ = a.step;  // its rows are written: a checkpoint may now stand at it
   if (writer_ && (a.step == 0 || (cfg_.output.every > 0 && a.step % cfg_.output.every == 0)))
     writer_->frame(a.state, body_);
   if (options_.step_log) log_step(*options_.step_log, a);
@@ -201,13 +205,17 @@ std::string Recorder::stop(const std::string& why) {
            "written before";
   }
   if (!writer_) return "";
+  const bool restartable = std::filesystem::exists(checkpoint_path(writer_->directory()));
   return "\n  the results up to the last accepted step (t = " + csv_number(ode_->committed().t) + " s) are in " +
-         writer_->directory() + "; report.txt says where the run stopped, checkpoint.txt restarts it (--restart)";
+         writer_->directory() + "; report.txt says where the run stopped, " +
+         (restartable ? "checkpoint.txt restarts it (--restart)" : "and no checkpoint was written: run it afresh");
 }
 
 RunResult Recorder::close(const std::string& stopped) {
-  // The restart point: the last accepted state, before a stopped run's extra snapshot of it.
-  if (writer_) save_checkpoint();
+  // The restart point: the last accepted state, before a stopped run's extra snapshot of it;
+  // not a state whose rows failed to be written (a full disk): the CSVs would end before it
+  // and refuse the restart, where the last checkpoint's state is still a good one.
+  if (writer_ && rows_step_ == ode_->steps()) save_checkpoint();
   result_.stopped = stopped;
   if (!stopped.empty() && (result_.snapshots.empty() || result_.snapshots.back().t < ode_->committed().t)) snapshot();
   if (options_.progress) std::fputs("\n", stderr);

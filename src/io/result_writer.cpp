@@ -92,9 +92,11 @@ ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::str
     curves_ = std::make_unique<CsvStream>(curves, curves_header(cfg));
     return;
   }
-  for (const std::string& csv : {history, curves}) CsvStream::lines_until(csv, resume->t);  // both, before either is cut
-  history_ = std::make_unique<CsvStream>(history, resume->t);
-  curves_ = std::make_unique<CsvStream>(curves, resume->t);
+  // Both read (and refused if cut short) before either is taken up.
+  const CsvStream::Kept history_rows = CsvStream::lines_until(history, resume->t),
+                        curves_rows = CsvStream::lines_until(curves, resume->t);
+  history_ = std::make_unique<CsvStream>(history, history_rows);
+  curves_ = std::make_unique<CsvStream>(curves, curves_rows);
   // Its rows (the same columns: the settings are the checkpoint's) are the step records.
   std::ifstream in(history);
   std::string line;

@@ -1,8 +1,8 @@
 #include "rccm/io/run_report.hpp"
 
-#include "rccm/io/atomic_file.hpp"
-#include "rccm/io/csv.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/base/format.hpp"
+#include "rccm/io/atomic_file.hpp"
 
 #include <nlohmann/json.hpp>
 

@@ -47,7 +47,7 @@ struct ArkodeIntegrator::Impl {
   void* mem = nullptr;
   std::string contact_failure;  // the last contact solve that failed, for the final message
   std::string arkode_message;   // ARKODE's own last error message
-  std::exception_ptr stop;       // anything else thrown after an accepted step (a stop request, a failed write)
+  std::exception_ptr stop;       // what a callback caught that is no contact failure (a stop request, a failed write, a bug)
 
   ArkodeScheme scheme;
   double fixed_step;  // > 0: ARKODE takes it without error control, its Newton failures cannot cut it
@@ -114,6 +114,9 @@ struct ArkodeIntegrator::Impl {
     } catch (const SolveError& e) {
       self->contact_failure = e.what();
       return 1;  // recoverable: ARKODE retries with a smaller step
+    } catch (...) {  // nothing may unwind through ARKODE's C frames: rethrown after it returns
+      self->stop = std::current_exception();
+      return -1;
     }
   }
 
@@ -131,6 +134,9 @@ struct ArkodeIntegrator::Impl {
     } catch (const SolveError& e) {
       self->contact_failure = e.what();
       return 1;
+    } catch (...) {
+      self->stop = std::current_exception();
+      return -1;
     }
   }
 
@@ -139,7 +145,7 @@ struct ArkodeIntegrator::Impl {
     try {
       self->ode.accept(t, as_eigen(beta));
       return 0;
-    } catch (const WriteError&) {  // a full disk: no matter of the integrator, said as it is
+    } catch (const WriteError&) {  // a full disk (a SolveError, so caught first): said as it is, not as ARKODE's
       self->stop = std::current_exception();
       return -1;
     } catch (const SolveError& e) {

@@ -183,9 +183,12 @@ TEST_CASE("a restart whose CSV lost the rows up to the checkpoint is refused, bo
     std::ofstream out(dir + "/curves.csv");  // the first 20 steps only
     for (std::size_t k = 0; k < 21; ++k) out << rows[k] << "\n";
   }
-  {  // and a row after the checkpoint in history.csv, which taking it up would drop
+  {  // and a row after the checkpoint in history.csv (its last row, at t = 99), which taking it up would drop
+    std::vector<std::string> history_rows;
+    std::ifstream in(dir + "/history.csv");
+    for (std::string l; std::getline(in, l);) history_rows.push_back(l);
     std::ofstream out(dir + "/history.csv", std::ios::app);
-    out << "99" << rows.back().substr(rows.back().find(',')) << "\n";
+    out << "99" << history_rows.back().substr(history_rows.back().find(',')) << "\n";
   }
   const std::size_t history = lines(dir + "/history.csv");
   CHECK_THROWS_WITH(run(b1(dir, euler), true),
@@ -193,6 +196,27 @@ TEST_CASE("a restart whose CSV lost the rows up to the checkpoint is refused, bo
                         Catch::Contains("run afresh with --force"));
   CHECK(lines(dir + "/history.csv") == history);  // refused before either file was cut at the checkpoint
   CHECK(lines(dir + "/curves.csv") == 21);
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a restart takes up CSVs with CRLF line ends and leaves them with LF alone", "[restart]") {
+  const std::string dir = fs::temp_directory_path() / "rccm_restart_crlf";
+  const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
+  request_stop(0);
+  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
+  request_stop(0);
+  for (const char* name : {"/history.csv", "/curves.csv"}) {  // copied through another system
+    std::string text = test::read_text(dir + name), crlf;
+    for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+    std::ofstream(dir + name, std::ios::binary) << crlf;
+  }
+  const RunResult r = run(b1(dir, euler), true);
+  for (const char* name : {"/history.csv", "/curves.csv"}) {
+    INFO(name);
+    const std::string text = test::read_text(dir + name);
+    CHECK(text.find('\r') == std::string::npos);
+    CHECK(lines(dir + name) == r.steps.size() + 1);  // every step once: the header and a row per step
+  }
   fs::remove_all(dir);
 }
 

@@ -64,8 +64,8 @@ std::vector<std::string> plan_resumed_sweep(std::vector<SweepCase>& cases);
 /// step and starts no other: the cases not run keep the status NotRun.
 void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force = false);
 
-/// The tools/plot command that overlays this sweep's cases into `directory` (the cases named
-/// one by one: the directory may also hold an earlier sweep's).
+/// The tools/plot command that overlays this sweep's cases with results into `directory` (the
+/// cases named one by one: the directory may also hold an earlier sweep's); "" if none has any.
 std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases);
 
 /// The command that goes on with an interrupted sweep: `rccm sweep CONFIG --set ... -j N --restart DIR`.

@@ -14,8 +14,6 @@ std::string csv_field(const std::string& text);
 
 /// A number with 12 significant digits (enough to read back what was computed to 1e-10).
 std::string csv_number(double v);
-/// `v` formatted by printf's `format` (one conversion of a double), for reports and messages.
-std::string fmt(const char* format, double v);
 
 /// The fields of one line.
 std::vector<std::string> csv_split(const std::string& line);
@@ -29,12 +27,16 @@ class CsvStream {
  public:
   /// Creates `path` with its header line.
   CsvStream(const std::string& path, const std::vector<std::string>& header);
-  /// The lines of `path` as an earlier run left it, to take it up at its checkpoint's time
-  /// `t`: the header and the complete rows whose first field (the time) is at most `t`.
-  /// Throws InputError when they end before `t` (rows lost: a restart cannot rebuild them).
-  static std::vector<std::string> lines_until(const std::string& path, double t);
-  /// Takes up `path` at time `t`: its lines_until(path, t) kept, the rest dropped, then appends.
-  CsvStream(const std::string& path, double t);
+  /// The lines of a file an earlier run left, kept to take it up at its checkpoint.
+  struct Kept {
+    std::vector<std::string> lines;
+  };
+  /// The header and the complete rows of `path` whose first field (the time) is at most `t`
+  /// (the checkpoint's). Throws InputError when they end before `t` (rows lost: a restart
+  /// cannot rebuild them), before anything is written.
+  static Kept lines_until(const std::string& path, double t);
+  /// Takes up `path` with its `kept` lines (the rest dropped), then appends.
+  CsvStream(const std::string& path, const Kept& kept);
   /// Appends a row of numbers. Throws WriteError naming the file when it cannot.
   void append(const std::vector<double>& row);
 

@@ -91,6 +91,7 @@ class Recorder {
   RunResult result_;
   int tiny_steps_ = 0;                    // accepted steps in a row below 1e-7 T
   std::vector<std::string> crawl_notes_;  // said once, and in the report's warnings
+  int rows_step_ = -1;                    // the last accepted step whose CSV rows are written
 };
 
 }  // namespace rccm
