@@ -38,6 +38,15 @@ RunResult run(const Config& cfg, bool restart = false, int stop_at_step = -1) {
   return Simulation(cfg, o).run();
 }
 
+/// B1 in 100 explicit Euler steps (`euler`), stopped by SIGTERM at step 50 in `dir`: its
+/// files and checkpoint to take up.
+const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
+void stop_euler_halfway(const std::string& dir) {
+  request_stop(0);
+  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
+  request_stop(0);
+}
+
 std::size_t lines(const std::string& path) {
   std::ifstream in(path);
   std::size_t n = 0;
@@ -147,10 +156,7 @@ TEST_CASE("a restart from a checkpoint whose pairs are other mesh nodes is refus
   // A checkpoint written by a version of rccm that listed the pairs in another order would
   // give each pair another's beta: its contact nodes are checked against the model's.
   const std::string dir = fs::temp_directory_path() / "rccm_restart_reordered";
-  const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
-  request_stop(0);
-  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
-  request_stop(0);
+  stop_euler_halfway(dir);
   Checkpoint ck = read_checkpoint(dir, b1(dir, euler));
   REQUIRE(ck.contact_nodes.size() == std::size_t(ck.state.beta.size()));
   std::swap(ck.contact_nodes[3], ck.contact_nodes[4]);
@@ -169,10 +175,7 @@ TEST_CASE("a restart whose CSV lost the rows up to the checkpoint is refused, bo
   // The checkpoint survived, the end of curves.csv did not (a power cut, a copy cut short):
   // a restart would leave a gap in time that no later step fills.
   const std::string dir = fs::temp_directory_path() / "rccm_restart_short_csv";
-  const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
-  request_stop(0);
-  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
-  request_stop(0);
+  stop_euler_halfway(dir);
   std::vector<std::string> rows;
   {
     std::ifstream in(dir + "/curves.csv");
@@ -201,10 +204,7 @@ TEST_CASE("a restart whose CSV lost the rows up to the checkpoint is refused, bo
 
 TEST_CASE("a restart takes up CSVs with CRLF line ends and leaves them with LF alone", "[restart]") {
   const std::string dir = fs::temp_directory_path() / "rccm_restart_crlf";
-  const std::vector<std::string> euler{"integrator.method=\"euler\"", "time.steps=100"};
-  request_stop(0);
-  REQUIRE_THROWS_AS(run(b1(dir, euler), false, 50), Interrupted);
-  request_stop(0);
+  stop_euler_halfway(dir);
   for (const char* name : {"/history.csv", "/curves.csv"}) {  // copied through another system
     std::string text = test::read_text(dir + name), crlf;
     for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
