@@ -6,7 +6,6 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstdlib>
-#include <fstream>
 #include <filesystem>
 
 namespace rccm {
@@ -97,14 +96,11 @@ ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::str
                         curves_rows = CsvStream::lines_until(curves, resume->t);
   history_ = std::make_unique<CsvStream>(history, history_rows);
   curves_ = std::make_unique<CsvStream>(curves, curves_rows);
-  // Its rows (the same columns: the settings are the checkpoint's) are the step records.
-  std::ifstream in(history);
-  std::string line;
-  std::getline(in, line);
-  for (int step = 0; std::getline(in, line); ++step) {
-    const std::vector<std::string> f = csv_split(line);
+  // Its kept rows (the same columns: the settings are the checkpoint's) are the step records.
+  for (std::size_t row = 1; row < history_rows.lines.size(); ++row) {
+    const std::vector<std::string> f = csv_split(history_rows.lines[row]);
     const auto at = [&](std::size_t k) { return std::strtod(f.at(k).c_str(), nullptr); };
-    resumed_steps_.push_back({step, at(0), at(1), long(at(2)), at(3), int(at(4)), at(11)});
+    resumed_steps_.push_back({int(row) - 1, at(0), at(1), long(at(2)), at(3), int(at(4)), at(11)});
   }
   std::vector<std::string> keep;
   for (double t : resume->output_times) keep.push_back(interface_file(t));
