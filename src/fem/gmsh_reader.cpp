@@ -250,7 +250,7 @@ class Reader {
     if (it != index_.end()) return it->second;
     std::vector<double> x, param;
     gmsh::model::mesh::getNode(tag, x, param);
-    if (!(std::abs(x[0]) < 1e15 && std::abs(x[1]) < 1e15 && std::abs(x[2]) < 1e15)) {  // NaN too; as mesh.size
+    if (!(std::abs(x[0]) < mesh_reach && std::abs(x[1]) < mesh_reach && std::abs(x[2]) < mesh_reach)) {  // NaN too
       std::ostringstream m;
       m << "node " << tag << " lies at (" << x[0] << ", " << x[1] << ", " << x[2]
         << "): the mesh must lie within 1e15 mm of 0";

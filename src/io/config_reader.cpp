@@ -472,7 +472,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
   if (m.exists("origin")) p.origin = r.coordinates(m, "origin", p.dim());
   const std::array<double, 3> extent{p.size[0], p.size[1], p.depth};
   for (int k = 0; k < p.dim(); ++k)
-    r.check(std::abs(p.origin[k]) + extent[k] < 1e15, m.exists("size") ? m["size"] : m, "the mesh must lie within 1e15 mm of 0",
+    r.check(std::abs(p.origin[k]) + extent[k] < mesh_reach, m.exists("size") ? m["size"] : m, "the mesh must lie within 1e15 mm of 0",
             extent[k]);
   if (p.file.empty()) {
     // Refused up front rather than failing after minutes.

@@ -24,6 +24,10 @@ struct NodeSetDef {
 enum class ElementType { T3, Q4, H8 };
 enum class Hypothesis { PlaneStrain, PlaneStress, Axisymmetric };
 
+/// Every point of a mesh lies within this distance of 0, mm (the built-in mesh's origin and
+/// size, a mesh file's nodes): beyond, its assembly squares past round-off and overflow.
+constexpr double mesh_reach = 1e15;
+
 /// The mesh source: a gmsh file (`file` set; 3D when it has a Physical Volume), the built-in
 /// structured rectangle, or the built-in box of H8 cells (`nz` > 0: 3D).
 struct MeshParams {
