@@ -124,4 +124,34 @@ inline double interpolate(const std::vector<double>& x, const std::vector<double
   return y[k - 1] + s * (y[k] - y[k - 1]);
 }
 
+/// A 2 x 2 patch of Q4 (or 8 T3) cells on [1, 3] x [0, 2] with its middle node moved off
+/// centre, and its boundary edges.
+inline Mesh distorted_patch(bool triangles, bool axisymmetric) {
+  Mesh m;
+  m.axisymmetric = axisymmetric;
+  for (int j = 0; j < 3; ++j)
+    for (int i = 0; i < 3; ++i) m.nodes.emplace_back(1.0 + i, double(j), 0.0);
+  m.nodes[4] = Eigen::Vector3d(2.3, 0.8, 0.0);
+  const auto id = [](int i, int j) { return 3 * j + i; };
+  for (int j = 0; j < 2; ++j)
+    for (int i = 0; i < 2; ++i) {
+      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
+      if (triangles) {
+        m.cells.push_back({a, b, c});
+        m.cells.push_back({a, c, d});
+      } else {
+        m.cells.push_back({a, b, c, d});
+      }
+    }
+  m.cell_body.assign(m.cells.size(), 0);
+  m.body_names = {"patch"};
+  for (int k = 0; k < 2; ++k) {
+    m.facets.push_back({id(k, 0), id(k + 1, 0)});
+    m.facets.push_back({id(2, k), id(2, k + 1)});
+    m.facets.push_back({id(k + 1, 2), id(k, 2)});
+    m.facets.push_back({id(0, k + 1), id(0, k)});
+  }
+  return m;
+}
+
 }  // namespace rccm::test

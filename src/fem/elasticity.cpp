@@ -11,51 +11,51 @@ namespace rccm {
 
 namespace {
 
-/// Strain-displacement matrix B (4 x 2k: xx, yy, xy, zz) at (xi, eta) of a cell, and the
-/// volume weight of the point: det J (per unit thickness) or 2 pi r det J (axisymmetric,
-/// where eps_zz = u_r / r). T3: xi, eta are area coordinates (B constant); Q4: the
+/// A cell's shape functions at a point: their derivatives in x, y (, z) (dim x k), their
+/// values N, det J, and (2D) the radius r = x of the point.
+/// Sized at run time up to H8's 3 x 8 without the heap: an accepted step measures every cell
+/// (SmallStrainCheck).
+struct Shape {
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 8> dNx;
+  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1> N;
+  double det = 0, r = 0;
+};
+
+/// 2D: at (xi, eta) of a cell. T3: xi, eta are area coordinates (dNx constant); Q4: the
 /// reference square [-1, 1]^2.
-double strain_matrix(const Mesh& mesh, const std::vector<int>& cell, double xi, double eta, Eigen::MatrixXd& B) {
+Shape shape_2d(const Mesh& mesh, const std::vector<int>& cell, double xi, double eta) {
   const int k = static_cast<int>(cell.size());
-  Eigen::MatrixXd dN(2, k);  // derivatives of the shape functions in the reference cell
-  Eigen::VectorXd N(k);
+  Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, 4> dN(2, k);  // derivatives of the shape functions in the reference cell
+  Shape s;
+  s.N.resize(k);
   if (k == 3) {
     dN << -1, 1, 0, -1, 0, 1;
-    N << 1 - xi - eta, xi, eta;
+    s.N << 1 - xi - eta, xi, eta;
   } else {
     dN << -(1 - eta), (1 - eta), (1 + eta), -(1 + eta),  //
         -(1 - xi), -(1 + xi), (1 + xi), (1 - xi);
     dN *= 0.25;
-    N << (1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta);
-    N *= 0.25;
+    s.N << (1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta);
+    s.N *= 0.25;
   }
-  Eigen::MatrixXd X(k, 2);
+  Eigen::Matrix<double, Eigen::Dynamic, 2, 0, 4, 2> X(k, 2);
   for (int a = 0; a < k; ++a) X.row(a) = mesh.nodes[cell[a]].head<2>().transpose();
   const Eigen::Matrix2d J = dN * X;
-  const double det = J.determinant();
-  RCCM_VERIFY(det > 0, "cell with non-positive Jacobian (clockwise or degenerate)");
-  const Eigen::MatrixXd dNx = J.inverse() * dN;  // d/dx, d/dy
-  B.setZero(4, 2 * k);
-  for (int a = 0; a < k; ++a) {
-    B(0, 2 * a) = dNx(0, a);
-    B(1, 2 * a + 1) = dNx(1, a);
-    B(2, 2 * a) = dNx(1, a);
-    B(2, 2 * a + 1) = dNx(0, a);
-  }
-  if (!mesh.axisymmetric) return det;
-  const double r = N.dot(X.col(0));
-  for (int a = 0; a < k; ++a) B(3, 2 * a) = N[a] / r;  // eps_theta = u_r / r
-  return 2 * M_PI * r * det;
+  s.det = J.determinant();
+  RCCM_VERIFY(s.det > 0, "cell with non-positive Jacobian (clockwise or degenerate)");
+  s.dNx = J.inverse() * dN;  // d/dx, d/dy
+  s.r = s.N.dot(X.col(0));
+  return s;
 }
 
-/// 3D: strain-displacement matrix B (6 x 3k: xx, yy, zz, yz, xz, xy) at r = (xi, eta, zeta)
-/// of a cell, and det J. T4 (k = 4): r are volume coordinates of the reference tetrahedron
-/// (B constant); H8 (k = 8): the reference cube [-1, 1]^3.
-double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vector3d& r, Eigen::MatrixXd& B) {
+/// 3D: at r = (xi, eta, zeta) of a cell. T4 (k = 4): volume coordinates of the reference
+/// tetrahedron (dNx constant); H8 (k = 8): the reference cube [-1, 1]^3.
+Shape shape_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vector3d& r) {
   static const double corner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                       {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
   const int k = static_cast<int>(cell.size());
-  Eigen::MatrixXd dN(3, k), X(k, 3);
+  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 8> dN(3, k);
+  Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 8, 3> X(k, 3);
   for (int a = 0; a < k; ++a) X.row(a) = mesh.nodes[cell[a]].transpose();
   if (k == 4) {  // N = 1 - xi - eta - zeta, xi, eta, zeta
     dN << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
@@ -69,9 +69,36 @@ double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Ei
     }
   }
   const Eigen::Matrix3d J = dN * X;
-  const double det = J.determinant();
-  RCCM_VERIFY(det > 0, "3D cell with non-positive Jacobian (inverted or degenerate)");
-  const Eigen::MatrixXd d = J.inverse() * dN;  // d/dx, d/dy, d/dz
+  Shape s;
+  s.det = J.determinant();
+  RCCM_VERIFY(s.det > 0, "3D cell with non-positive Jacobian (inverted or degenerate)");
+  s.dNx = J.inverse() * dN;  // d/dx, d/dy, d/dz
+  return s;
+}
+
+/// Strain-displacement matrix B (4 x 2k: xx, yy, xy, zz) at (xi, eta) of a cell, and the
+/// volume weight of the point: det J (per unit thickness) or 2 pi r det J (axisymmetric,
+/// where eps_zz = u_r / r).
+double strain_matrix(const Mesh& mesh, const std::vector<int>& cell, double xi, double eta, Eigen::MatrixXd& B) {
+  const int k = static_cast<int>(cell.size());
+  const Shape s = shape_2d(mesh, cell, xi, eta);
+  B.setZero(4, 2 * k);
+  for (int a = 0; a < k; ++a) {
+    B(0, 2 * a) = s.dNx(0, a);
+    B(1, 2 * a + 1) = s.dNx(1, a);
+    B(2, 2 * a) = s.dNx(1, a);
+    B(2, 2 * a + 1) = s.dNx(0, a);
+  }
+  if (!mesh.axisymmetric) return s.det;
+  for (int a = 0; a < k; ++a) B(3, 2 * a) = s.N[a] / s.r;  // eps_theta = u_r / r
+  return 2 * M_PI * s.r * s.det;
+}
+
+/// 3D: strain-displacement matrix B (6 x 3k: xx, yy, zz, yz, xz, xy) at r of a cell, and det J.
+double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vector3d& r, Eigen::MatrixXd& B) {
+  const int k = static_cast<int>(cell.size());
+  const Shape s = shape_3d(mesh, cell, r);
+  const auto& d = s.dNx;
   B.setZero(6, 3 * k);
   for (int a = 0; a < k; ++a) {
     B(0, 3 * a) = d(0, a);
@@ -81,7 +108,7 @@ double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Ei
     B(4, 3 * a) = d(2, a), B(4, 3 * a + 2) = d(0, a);      // gamma_xz
     B(5, 3 * a) = d(1, a), B(5, 3 * a + 1) = d(0, a);      // gamma_xy
   }
-  return det;
+  return s.det;
 }
 
 /// Quadrature points (xi, eta, zeta, weight) of a 3D cell: T4 its centroid (volume det J / 6),
@@ -171,6 +198,56 @@ CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_mater
     f.stress.col(c) = sigma;
   }
   return f;
+}
+
+SmallStrainCheck::SmallStrainCheck(const Mesh& mesh) : mesh_(mesh), first_(mesh.cells.size() + 1, 0) {
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c) first_[c + 1] = first_[c] + static_cast<int>(mesh.cells[c].size());
+  gradients_.setZero(mesh.dim + 1, first_.back());
+  volume_.resize(static_cast<Eigen::Index>(mesh.cells.size()));
+  for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
+    const auto& cell = mesh.cells[c];
+    const int k = static_cast<int>(cell.size());
+    for (int n : cell) dof_.push_back(mesh.dof(n, 0));
+    const double centre = k == 3 ? 1.0 / 3 : 0.0;
+    const Shape s = mesh.dim == 3 ? shape_3d(mesh, cell, centre_3d(k)) : shape_2d(mesh, cell, centre, centre);
+    gradients_.block(0, first_[c], mesh.dim, k) = s.dNx;
+    double dV = s.det * (mesh.dim == 3 ? (k == 4 ? 1.0 / 6 : 8.0) : (k == 3 ? 0.5 : 4.0));  // the centre's weight: the cell's volume
+    if (mesh.dim == 2 && mesh.axisymmetric) {
+      gradients_.block(2, first_[c], 1, k) = s.N.transpose() / s.r;  // the hoop u_r / r
+      dV *= 2 * M_PI * s.r;
+    }
+    volume_[static_cast<Eigen::Index>(c)] = dV;
+  }
+}
+
+DeformationExcess SmallStrainCheck::operator()(const Eigen::VectorXd& u, double limit) const {
+  DeformationExcess e;
+  const int dim = mesh_.dim;
+  const std::size_t bodies = mesh_.body_names.size();
+  std::vector<double> volume(bodies, 0.0), beyond(bodies, 0.0);
+  for (std::size_t c = 0; c < mesh_.cells.size(); ++c) {
+    const double dV = volume_[static_cast<Eigen::Index>(c)];
+    const int body = mesh_.cell_body[c];
+    volume[body] += dV;
+    // H_ij = du_i / dx_j = sum_a u_a,i dN_a / dx_j; in 2D the zz place holds the hoop u_r / r.
+    Eigen::Matrix3d H = Eigen::Matrix3d::Zero();
+    for (int a = first_[c]; a < first_[c + 1]; ++a) {
+      const double* g = gradients_.col(a).data();
+      const double* ua = u.data() + dof_[a];
+      for (int i = 0; i < dim; ++i)
+        for (int j = 0; j < dim; ++j) H(i, j) += ua[i] * g[j];
+      if (dim == 2) H(2, 2) += g[2] * ua[0];
+    }
+    // |H|_2 <= |H|_F: the largest singular value only where it may pass the limit.
+    if (H.norm() <= limit) continue;
+    const double norm = H.operatorNorm();
+    if (norm <= limit) continue;
+    beyond[body] += dV;
+    if (norm > e.largest) e.largest = norm, e.cell = static_cast<int>(c);
+  }
+  for (std::size_t b = 0; b < bodies; ++b)
+    if (beyond[b] > e.fraction * volume[b]) e.fraction = beyond[b] / volume[b], e.body = static_cast<int>(b);
+  return e;
 }
 
 }  // namespace rccm

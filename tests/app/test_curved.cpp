@@ -16,6 +16,7 @@
 //   same beta, u and Rbar at every pair.
 #include "helpers.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/fem/elasticity.hpp"
 #include "rccm/model/body_state.hpp"
 
 #include <catch2/catch.hpp>
@@ -421,6 +422,7 @@ TEST_CASE("config/coating-curved.cfg: a coating peeled from a rigid cylinder deb
   CHECK(checks.bonded_friction == 0.0);   // no friction while fully bonded
   CHECK(checks.max_compression > 0.0);    // ahead of the front the layer presses on the cylinder
   CHECK(r.energy.relative_error() < 1e-4);
+  CHECK(r.warnings.empty());  // within small strains (|grad u| at most 0.108): no note of large deformation
   // The front: pairs lose their adhesion in order of decreasing angle (from the pulled end),
   // the debonded part is one run from the pulled end that grows through the output times
   // (2, 5 and 10 s) and has not reached the far end.
@@ -452,6 +454,39 @@ TEST_CASE("config/coating-curved.cfg: a coating peeled from a rigid cylinder deb
   CHECK(front[2] < front[1]);
   CHECK(front[2] > 0.0);  // the far end (-30 degrees) still bonded
   CHECK(r.snapshots[2].debonded_length > r.snapshots[1].debonded_length);
+}
+
+TEST_CASE("config/coating-curved.cfg lifted 4 mm instead of 1: the run notes once where it leaves small strains",
+          "[curved]") {
+  // The pulled end's cells pass |grad u| = 0.15 (the note's limit) over 1 % of the coating's
+  // volume (its rule) at some accepted step: the run's one warning names the coating, the
+  // limit and a time at which the coating is beyond, within T / 200 (the checks' spacing)
+  // and a step of the first such step.
+  const Config cfg = coating_curved({"loads.[0].value=4.0"});
+  const Model model = test::make_model(cfg);
+  const SmallStrainCheck small_strains(model.mesh());
+  double first = -1, largest_dt = 0;
+  std::vector<std::pair<double, double>> fraction;  // (t, share of the coating beyond) at each step
+  RunOptions o;
+  o.observer = [&](const AcceptedStep& a) {
+    const DeformationExcess e = small_strains(body_state(model, a.state).u, 0.15);
+    if (first < 0 && e.fraction > 0.01) first = a.t;
+    fraction.emplace_back(a.t, e.fraction);
+    largest_dt = std::max(largest_dt, a.dt);
+  };
+  const RunResult r = Simulation(cfg, o).run();
+  REQUIRE(r.stopped.empty());
+  REQUIRE(first > 0);
+  REQUIRE(r.warnings.size() == 1);
+  CHECK_THAT(r.warnings[0], Catch::StartsWith("t = ") && Catch::Contains(" s: the displacement gradient |grad u| exceeds 0.15 over ") &&
+                                Catch::Contains("of body 'coating'"));
+  const double t_note = std::stod(r.warnings[0].substr(4));
+  INFO("first beyond at t = " << first << ", noted at t = " << t_note);
+  CHECK(t_note >= first);
+  CHECK(t_note <= first + cfg.time.T / 200 + largest_dt);
+  const auto at = std::find_if(fraction.begin(), fraction.end(), [&](const auto& f) { return std::abs(f.first - t_note) < 1e-5; });
+  REQUIRE(at != fraction.end());
+  CHECK(at->second > 0.01);
 }
 
 TEST_CASE("a curved interface turned about a point (mesh, circle centre and pull): the same beta, u and Rbar at every "

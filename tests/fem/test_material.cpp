@@ -3,6 +3,7 @@
 // turns the law, the out-of-plane components follow the hypothesis, and a distorted patch
 // reproduces uniform strain states exactly in plane and axisymmetric form (with the 2 pi r
 // weights checked by the strain energy and the tributary measures).
+#include "helpers.hpp"
 #include "rccm/fem/elasticity.hpp"
 #include "rccm/fem/material.hpp"
 #include "rccm/fem/mesh.hpp"
@@ -38,36 +39,6 @@ Eigen::Vector3d strain_in_axes(const Eigen::Vector3d& e, double angle) {
   const double c = std::cos(angle * M_PI / 180), s = std::sin(angle * M_PI / 180);
   return {c * c * e[0] + s * s * e[1] + c * s * e[2], s * s * e[0] + c * c * e[1] - c * s * e[2],
           -2 * c * s * e[0] + 2 * c * s * e[1] + (c * c - s * s) * e[2]};
-}
-
-/// A 2 x 2 patch of Q4 (or 8 T3) cells on [1, 3] x [0, 2] with its middle node moved off
-/// centre, and its boundary edges.
-Mesh distorted_patch(bool triangles, bool axisymmetric) {
-  Mesh m;
-  m.axisymmetric = axisymmetric;
-  for (int j = 0; j < 3; ++j)
-    for (int i = 0; i < 3; ++i) m.nodes.emplace_back(1.0 + i, double(j), 0.0);
-  m.nodes[4] = Eigen::Vector3d(2.3, 0.8, 0.0);
-  const auto id = [](int i, int j) { return 3 * j + i; };
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < 2; ++i) {
-      const int a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), d = id(i, j + 1);
-      if (triangles) {
-        m.cells.push_back({a, b, c});
-        m.cells.push_back({a, c, d});
-      } else {
-        m.cells.push_back({a, b, c, d});
-      }
-    }
-  m.cell_body.assign(m.cells.size(), 0);
-  m.body_names = {"patch"};
-  for (int k = 0; k < 2; ++k) {
-    m.facets.push_back({id(k, 0), id(k + 1, 0)});
-    m.facets.push_back({id(2, k), id(2, k + 1)});
-    m.facets.push_back({id(k + 1, 2), id(k, 2)});
-    m.facets.push_back({id(0, k + 1), id(0, k)});
-  }
-  return m;
 }
 
 }  // namespace
@@ -213,7 +184,7 @@ TEST_CASE("patch test: a distorted patch carries uniform strain exactly, plane a
   for (bool triangles : {false, true})
     for (bool axisymmetric : {false, true}) {
       INFO((triangles ? "T3" : "Q4") << (axisymmetric ? " axisymmetric" : " plane"));
-      const Mesh m = distorted_patch(triangles, axisymmetric);
+      const Mesh m = test::distorted_patch(triangles, axisymmetric);
       const MaterialParams p = axisymmetric ? isotropic(1000, 0.3, Hypothesis::Axisymmetric)
                                             : orthotropic(1.2e5, 1e4, 9e3, 0.3, 0.28, 0.45, 5e3, 35, Hypothesis::PlaneStrain);
       const std::vector<Material> materials{Material(p)};
@@ -245,7 +216,7 @@ TEST_CASE("patch test: a distorted patch carries uniform strain exactly, plane a
 
 TEST_CASE("tributary measures are lengths in the plane and ring areas on an axisymmetric mesh", "[material]") {
   for (bool axisymmetric : {false, true}) {
-    const Mesh m = distorted_patch(false, axisymmetric);
+    const Mesh m = test::distorted_patch(false, axisymmetric);
     const std::vector<int> bottom = {0, 1, 2}, right = {2, 5, 8};
     double a_bottom = 0, a_right = 0, l_bottom = 0;
     for (double a : m.tributary_measures(bottom)) a_bottom += a;

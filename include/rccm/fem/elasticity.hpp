@@ -23,4 +23,30 @@ struct CellFields {
 };
 CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_materials, const Eigen::VectorXd& u);
 
+/// How far the bodies are from small strains, the hypothesis of linear elasticity: the
+/// displacement gradient H = grad u at each cell's centre (3 x 3; in 2D the zz place holds an
+/// axisymmetric body's hoop u_r / r), measured by its largest singular value |H|_2 (a rigid
+/// rotation by theta: 2 sin(theta / 2); a uniform stretch by e: |e|).
+struct DeformationExcess {
+  double fraction = 0;  // the largest share of a body's volume (each cell at its centre) where |H|_2 > limit
+  int body = -1;        // that body (-1: none exceeds the limit)
+  double largest = 0;   // the largest |H|_2 of the cells beyond the limit (0: none)
+  int cell = -1;        // the cell where it is
+};
+
+/// Measures a mesh's displacements at every accepted step: the cells' shape gradients at
+/// their centres are computed once (a check then costs a few products per cell).
+class SmallStrainCheck {
+ public:
+  explicit SmallStrainCheck(const Mesh& mesh);
+  DeformationExcess operator()(const Eigen::VectorXd& u, double limit) const;
+
+ private:
+  const Mesh& mesh_;
+  std::vector<int> first_;     // cell c's nodes are columns first_[c] .. first_[c + 1] - 1 of gradients_
+  std::vector<int> dof_;       // the first DOF of each of those nodes
+  Eigen::MatrixXd gradients_;  // dN_a/dx_j in rows 0 .. dim - 1; 2D: N_a / r in row 2 (axisymmetric, else 0)
+  Eigen::VectorXd volume_;     // of each cell
+};
+
 }  // namespace rccm

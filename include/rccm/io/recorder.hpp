@@ -5,6 +5,7 @@
 #pragma once
 
 #include "rccm/base/config.hpp"
+#include "rccm/fem/elasticity.hpp"
 #include "rccm/io/checkpoint.hpp"
 #include "rccm/io/output_directory.hpp"
 #include "rccm/io/result_writer.hpp"
@@ -71,6 +72,8 @@ class Recorder {
   bool rate_independent() const { return cfg_.integrator.method == Method::RateIndependent; }
   RunResult close(const std::string& stopped);
   void note_crawl(const AcceptedStep& a);
+  void note_deformation(const AcceptedStep& a);
+  void note(const std::string& text);
   /// "rccm: [label: ]note: text" on stderr, after `lead` (a line break ending the progress line).
   void say_note(const std::string& text, const char* lead = "") const;
   void save_checkpoint();
@@ -90,7 +93,10 @@ class Recorder {
   IntegratorStats earlier_;   // counts of the run a restart continues
   RunResult result_;
   int tiny_steps_ = 0;                    // accepted steps in a row below 1e-7 T
-  std::vector<std::string> crawl_notes_;  // said once, and in the report's warnings
+  std::vector<std::string> run_notes_;  // said once each while the run runs, and in the report's warnings
+  std::unique_ptr<SmallStrainCheck> small_strains_;
+  bool deformation_noted_ = false;      // note_deformation has spoken
+  double deformation_checked_ = -1e300;  // the time note_deformation last measured
   int rows_step_ = -1;                    // the last accepted step whose CSV rows are written
 };
 

@@ -1,0 +1,141 @@
+// How far the bodies are from small strains (fem/elasticity: SmallStrainCheck), against
+// fields whose displacement gradient is known in closed form: a rigid rotation gives
+// |grad u|_2 = 2 sin(theta / 2) in every cell (plane T3 and Q4, 3D H8 and T4, about any
+// axis), an axisymmetric radial shift its hoop gradient u_r / r, and the share beyond a limit
+// is counted by volume and per body.
+#include "helpers.hpp"
+#include "rccm/fem/box_mesh.hpp"
+#include "rccm/fem/elasticity.hpp"
+#include "rccm/fem/mesh.hpp"
+
+#include <catch2/catch.hpp>
+
+#include <Eigen/Geometry>
+
+#include <cmath>
+
+using namespace rccm;
+
+namespace {
+
+/// A box of 2 x 2 x 3 H8 cells over 2 x 1 x 3 mm.
+Mesh box() {
+  MeshParams p;
+  p.size = {2.0, 1.0};
+  p.depth = 3.0;
+  p.nx = 2, p.ny = 2, p.nz = 3;
+  p.dimension = 3;
+  p.element = ElementType::H8;
+  return make_box(p);
+}
+
+/// Each H8 of `m` as the six T4 of Kuhn's split along its diagonal 0-6, each of positive volume.
+Mesh kuhn_tetrahedra(Mesh m) {
+  static const int path[6][2] = {{1, 2}, {1, 5}, {3, 2}, {3, 7}, {4, 5}, {4, 7}};
+  std::vector<std::vector<int>> cells;
+  for (const std::vector<int>& h : m.cells)
+    for (const auto& p : path) {
+      std::vector<int> t = {h[0], h[p[0]], h[p[1]], h[6]};
+      const Eigen::Vector3d &x0 = m.nodes[t[0]], &x1 = m.nodes[t[1]], &x2 = m.nodes[t[2]], &x3 = m.nodes[t[3]];
+      if ((x1 - x0).cross(x2 - x0).dot(x3 - x0) < 0) std::swap(t[1], t[2]);
+      cells.push_back(t);
+    }
+  m.cells = cells;
+  m.cell_body.assign(cells.size(), 0);
+  return m;
+}
+
+/// u = (R - I)(x - x0) at every node: a rigid rotation about x0.
+Eigen::VectorXd rotated(const Mesh& m, const Eigen::Matrix3d& R, const Eigen::Vector3d& x0) {
+  Eigen::VectorXd u(m.num_dofs());
+  for (int n = 0; n < m.num_nodes(); ++n)
+    u.segment(m.dof(n, 0), m.dim) = ((R - Eigen::Matrix3d::Identity()) * (m.nodes[n] - x0)).head(m.dim);
+  return u;
+}
+
+/// The measure is exactly `expected` in every cell: the whole body lies beyond a limit just
+/// below it and nothing beyond one just above it.
+void check_uniform(const Mesh& m, const Eigen::VectorXd& u, double expected) {
+  const DeformationExcess below = SmallStrainCheck(m)(u, expected * (1 - 1e-9));
+  CHECK(below.largest == Approx(expected).epsilon(1e-12));
+  CHECK(below.fraction == Approx(1.0).epsilon(1e-12));
+  CHECK(below.body == 0);
+  const DeformationExcess above = SmallStrainCheck(m)(u, expected * (1 + 1e-9));
+  CHECK(above.fraction == 0.0);
+  CHECK(above.body == -1);
+}
+
+}  // namespace
+
+TEST_CASE("a rigid rotation by theta has |grad u| = 2 sin(theta/2) in every cell: T3 and Q4 in the plane", "[elasticity]") {
+  for (bool triangles : {false, true})
+    for (double theta : {0.05, 0.3, 1.2}) {
+      INFO((triangles ? "T3" : "Q4") << ", theta = " << theta);
+      const Mesh m = test::distorted_patch(triangles, false);
+      const Eigen::Matrix3d R = Eigen::AngleAxisd(theta, Eigen::Vector3d::UnitZ()).toRotationMatrix();
+      check_uniform(m, rotated(m, R, {0.7, -2.0, 0.0}), 2 * std::sin(theta / 2));
+    }
+}
+
+TEST_CASE("a rigid rotation by theta has |grad u| = 2 sin(theta/2) in every cell: H8 and T4 about any axis", "[elasticity]") {
+  for (bool tetrahedra : {false, true}) {
+    const Mesh m = tetrahedra ? kuhn_tetrahedra(box()) : box();
+    const char* element = tetrahedra ? "T4" : "H8";
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
+    INFO(element);
+    check_uniform(m, rotated(m, R, {0.3, 0.2, -1.0}), 2 * std::sin(0.2));
+  }
+}
+
+TEST_CASE("a uniform stretch has |grad u| = its largest strain, and an axisymmetric radial shift c its hoop c / r",
+          "[elasticity]") {
+  for (bool triangles : {false, true}) {
+    INFO((triangles ? "T3" : "Q4"));
+    const Mesh plane = test::distorted_patch(triangles, false);
+    Eigen::VectorXd u(plane.num_dofs());
+    for (int n = 0; n < plane.num_nodes(); ++n)
+      u[plane.dof(n, 0)] = 0.02 * plane.nodes[n].x(), u[plane.dof(n, 1)] = -0.07 * plane.nodes[n].y();
+    check_uniform(plane, u, 0.07);
+    // u_r = c, u_z = 0: grad u is c / r in the hoop place only; the cells' centres (the mean
+    // of a Q4's corners, a T3's centroid) give the largest, c / (their smallest r).
+    const Mesh ring = test::distorted_patch(triangles, true);
+    const double c = 0.05;
+    u.setZero();
+    double r_min = 1e300;
+    for (int n = 0; n < ring.num_nodes(); ++n) u[ring.dof(n, 0)] = c;
+    for (const std::vector<int>& cell : ring.cells) {
+      double r = 0;
+      for (int n : cell) r += ring.nodes[n].x() / double(cell.size());
+      r_min = std::min(r_min, r);
+    }
+    const DeformationExcess e = SmallStrainCheck(ring)(u, 0.0);
+    CHECK(e.largest == Approx(c / r_min).epsilon(1e-12));
+    CHECK(e.fraction == Approx(1.0).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("the share beyond the limit is by volume and per body: a strip bent by u_y = k x^2 / 2", "[elasticity]") {
+  // Q4 cells of 1 mm height over x = 0, 1, 2, 3, 3.2, 4: bodies "left" (the first three) and
+  // "right" ([3, 3.2] and [3.2, 4]). du_y/dx = k x is exact at a cell's centre (the average
+  // slope of a quadratic), so with k = 0.1 and a limit of 0.33 only [3.2, 4] (0.36) is beyond:
+  // 0.8 of the right body's volume (half its cells, a fifth of the strip's volume).
+  Mesh m;
+  const double xs[] = {0, 1, 2, 3, 3.2, 4};
+  for (double y : {0.0, 1.0})
+    for (double x : xs) m.nodes.emplace_back(x, y, 0.0);
+  for (int i = 0; i < 5; ++i) m.cells.push_back({i, i + 1, i + 7, i + 6});
+  m.cell_body = {0, 0, 0, 1, 1};
+  m.body_names = {"left", "right"};
+  const double k = 0.1;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs());
+  for (int n = 0; n < m.num_nodes(); ++n) u[m.dof(n, 1)] = k * m.nodes[n].x() * m.nodes[n].x() / 2;
+  const DeformationExcess e = SmallStrainCheck(m)(u, 0.33);
+  CHECK(e.fraction == Approx(0.8).epsilon(1e-12));
+  CHECK(e.body == 1);
+  CHECK(e.largest == Approx(k * 3.6).epsilon(1e-12));
+  CHECK(e.cell == 4);
+  // A limit the left body's last cell (2.5 k) passes too: the right body is wholly beyond.
+  const DeformationExcess lower = SmallStrainCheck(m)(u, 0.24);
+  CHECK(lower.fraction == Approx(1.0).epsilon(1e-12));
+  CHECK(lower.body == 1);
+}
