@@ -115,27 +115,55 @@ TEST_CASE("a uniform stretch has |grad u| = its largest strain, and an axisymmet
 }
 
 TEST_CASE("the share beyond the limit is by volume and per body: a strip bent by u_y = k x^2 / 2", "[elasticity]") {
-  // Q4 cells of 1 mm height over x = 0, 1, 2, 3, 3.2, 4: bodies "left" (the first three) and
-  // "right" ([3, 3.2] and [3.2, 4]). du_y/dx = k x is exact at a cell's centre (the average
-  // slope of a quadratic), so with k = 0.1 and a limit of 0.33 only [3.2, 4] (0.36) is beyond:
-  // 0.8 of the right body's volume (half its cells, a fifth of the strip's volume).
+  // Cells of 1 mm height over x = 0, 1, 2, 3, 3.2, 4: bodies "left" (three Q4) and "right"
+  // ([3, 3.2] as two T3, [3.2, 4] a Q4). du_y/dx = k x is exact at a Q4's centre (the average
+  // slope of a quadratic) and on the T3 (their nodes at x = 3 and 3.2: k 3.1), so with k = 0.1
+  // and a limit of 0.33 only [3.2, 4] (0.36) is beyond: 0.8 of the right body's volume (a
+  // third of its cells, a fifth of the strip's volume).
   Mesh m;
   const double xs[] = {0, 1, 2, 3, 3.2, 4};
   for (double y : {0.0, 1.0})
     for (double x : xs) m.nodes.emplace_back(x, y, 0.0);
-  for (int i = 0; i < 5; ++i) m.cells.push_back({i, i + 1, i + 7, i + 6});
-  m.cell_body = {0, 0, 0, 1, 1};
+  for (int i : {0, 1, 2}) m.cells.push_back({i, i + 1, i + 7, i + 6});
+  m.cells.push_back({3, 4, 10});
+  m.cells.push_back({3, 10, 9});
+  m.cells.push_back({4, 5, 11, 10});
+  m.cell_body = {0, 0, 0, 1, 1, 1};
   m.body_names = {"left", "right"};
   const double k = 0.1;
   Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs());
   for (int n = 0; n < m.num_nodes(); ++n) u[m.dof(n, 1)] = k * m.nodes[n].x() * m.nodes[n].x() / 2;
-  const DeformationExcess e = SmallStrainCheck(m)(u, 0.33);
+  const SmallStrainCheck check(m);
+  const DeformationExcess e = check(u, 0.33);
   CHECK(e.fraction == Approx(0.8).epsilon(1e-12));
   CHECK(e.body == 1);
   CHECK(e.largest == Approx(k * 3.6).epsilon(1e-12));
-  CHECK(e.cell == 4);
+  CHECK(e.cell == 5);
   // A limit the left body's last cell (2.5 k) passes too: the right body is wholly beyond.
-  const DeformationExcess lower = SmallStrainCheck(m)(u, 0.24);
+  const DeformationExcess lower = check(u, 0.24);
   CHECK(lower.fraction == Approx(1.0).epsilon(1e-12));
   CHECK(lower.body == 1);
+  // Below 0.25 k: the left body's cells beyond 0.05 are [1, 2] and [2, 3], two thirds of it,
+  // the right body wholly: the larger share is the right body's.
+  CHECK(check(u, 0.05).fraction == Approx(1.0).epsilon(1e-12));
+}
+
+TEST_CASE("an axisymmetric body's share is by ring volume: a radial shift c beyond the limit near the axis only",
+          "[elasticity]") {
+  // Q4 rings 1 < r < 2, 2 < r < 3, 3 < r < 4 of height 1 (ring volumes 2 pi r_c, r_c = 1.5,
+  // 2.5, 3.5: exact at the centre for a rectangle); u_r = c gives the hoop gradient c / r_c,
+  // beyond c / 2 in the first ring only: 1.5 / 7.5 of the volume (a third of the cells).
+  Mesh m;
+  m.axisymmetric = true;
+  for (double z : {0.0, 1.0})
+    for (double r : {1.0, 2.0, 3.0, 4.0}) m.nodes.emplace_back(r, z, 0.0);
+  for (int i : {0, 1, 2}) m.cells.push_back({i, i + 1, i + 5, i + 4});
+  m.cell_body.assign(3, 0);
+  m.body_names = {"rings"};
+  const double c = 0.3;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs());
+  for (int n = 0; n < m.num_nodes(); ++n) u[m.dof(n, 0)] = c;
+  const DeformationExcess e = SmallStrainCheck(m)(u, c / 2);
+  CHECK(e.fraction == Approx(1.5 / 7.5).epsilon(1e-12));
+  CHECK(e.largest == Approx(c / 1.5).epsilon(1e-12));
 }
