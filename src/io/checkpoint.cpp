@@ -1,6 +1,7 @@
 #include "rccm/io/checkpoint.hpp"
 
 #include "rccm/io/atomic_file.hpp"
+#include "rccm/io/csv.hpp"
 #include "rccm/base/errors.hpp"
 
 #include <cerrno>
@@ -86,8 +87,7 @@ class RecordReader {
   std::istringstream next(const char* name) {
     std::string line;
     ++line_;
-    if (!std::getline(in_, line)) fail(std::string("'") + name + "', found the end of the file");
-    if (!line.empty() && line.back() == '\r') line.pop_back();  // CRLF line ends (a copy through another system)
+    if (!read_line(in_, line)) fail(std::string("'") + name + "', found the end of the file");
     std::istringstream s(line);
     std::string word;
     if (!(s >> word) || word != name) fail(std::string("'") + name + "'");

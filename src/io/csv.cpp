@@ -52,6 +52,12 @@ std::string csv_line(const std::vector<std::string>& fields) {
   return line;
 }
 
+std::istream& read_line(std::istream& in, std::string& line) {
+  if (std::getline(in, line))
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+  return in;
+}
+
 CsvStream::CsvStream(const std::string& path, const std::vector<std::string>& header)
     : path_(path), out_(path) {
   if (!out_) throw WriteError("cannot create " + path + " (" + std::strerror(errno) + ")");
@@ -60,17 +66,12 @@ CsvStream::CsvStream(const std::string& path, const std::vector<std::string>& he
 
 CsvStream::Kept CsvStream::lines_until(const std::string& path, double t) {
   std::ifstream in(path);
-  std::vector<std::string> lines(1);
-  if (!std::getline(in, lines[0])) throw InputError(path + ": the result file to take up is missing or empty");
-  const auto strip = [](std::string& line) {  // CRLF line ends (a copy through another system): appended rows end in LF
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-  };
-  strip(lines[0]);
+  std::vector<std::string> lines(1);  // CRLF line ends are read without their CR: appended rows end in LF
+  if (!read_line(in, lines[0])) throw InputError(path + ": the result file to take up is missing or empty");
   const std::size_t columns = csv_split(lines[0]).size();
   const double eps = 1e-9 * std::max(1.0, std::abs(t));
   double last = -std::numeric_limits<double>::infinity();
-  for (std::string line; std::getline(in, line);) {
-    strip(line);
+  for (std::string line; read_line(in, line);) {
     const std::vector<std::string> fields = csv_split(line);
     char* end = nullptr;
     const double time = std::strtod(fields[0].c_str(), &end);

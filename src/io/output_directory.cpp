@@ -1,6 +1,7 @@
 #include "rccm/io/output_directory.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/io/csv.hpp"
 
 #include <fcntl.h>
 #include <stdlib.h>
@@ -37,7 +38,7 @@ bool result_file(const std::string& name) {
 void remove_plots(const fs::path& plots) {
   std::error_code ec;
   std::ifstream manifest(plots / ".rccm-plots");
-  for (std::string name; std::getline(manifest, name);)
+  for (std::string name; read_line(manifest, name);)
     if (!name.empty() && name.find('/') == std::string::npos && name != "." && name != "..") fs::remove(plots / name, ec);
   manifest.close();
   fs::remove(plots / ".rccm-plots", ec);
@@ -72,7 +73,7 @@ bool holds_results(const std::string& directory) {
 
 bool holds_complete_run(const std::string& directory) {
   std::ifstream report(fs::path(directory) / "report.txt");
-  for (std::string line; std::getline(report, line);)
+  for (std::string line; read_line(report, line);)
     if (line.rfind("status: complete", 0) == 0) return true;
   return false;
 }

@@ -132,6 +132,14 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains("checkpoint.txt: the run reached time.T = ") && Catch::Contains(" s: there is nothing to go on with"));
     CHECK(test::read_text(parts + "/report.txt") == report);
     CHECK(fs::exists(parts + "/mesh_0003.vtu"));
+    // So is it after a copy through another system (CRLF line ends in the report and the checkpoint).
+    for (const char* name : {"/report.txt", "/checkpoint.txt"}) {
+      std::string text = test::read_text(parts + name), crlf;
+      for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+      std::ofstream(parts + name, std::ios::binary) << crlf;
+    }
+    CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains(" s: there is nothing to go on with"));
+    CHECK(fs::exists(parts + "/mesh_0003.vtu"));
     // A run cut off after its checkpoint at T, before its report (kill -9): the restart ends it.
     fs::remove(parts + "/report.txt");
     fs::remove(parts + "/report.json");

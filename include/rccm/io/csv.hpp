@@ -21,6 +21,10 @@ std::vector<std::string> csv_split(const std::string& line);
 /// A line of fields, each quoted when it needs to be.
 std::string csv_line(const std::vector<std::string>& fields);
 
+/// Reads a line of a text file rccm wrote and reads back (a CSV, the checkpoint, a manifest)
+/// without its line end: LF, or CRLF after a copy through another system.
+std::istream& read_line(std::istream& in, std::string& line);
+
 /// A CSV file that grows by one complete line per append, written with a single write, so
 /// that a reader (a plot script, `tail -f`) never sees half a line.
 class CsvStream {
