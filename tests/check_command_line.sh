@@ -4,7 +4,8 @@
 #     one value too, not the first kept and the second dropped), a bare path is a
 #     string, -o DIR writes there, --restart '' is refused; a doubtful interface warns;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
-#  3. --force starts from an empty result set and leaves other files alone, in plots/ too;
+#  3. --force starts from an empty result set and leaves other files alone, in plots/ too
+#     (its manifest read with CRLF line ends as well);
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
 #  5. a full disk: exit 3, the message names the file that could not be written and does not
 #     claim a report that is not there, nor blames the integrator (ARKODE's step callback); the
@@ -107,6 +108,7 @@ check; "$rccm" run "$b1" -q --force "${short[@]}" --set 'output.times=[0.3]' -o 
 rm "$out/plots/mine.txt"
 check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force: $(cat "$work/err")"
 MPLBACKEND=Agg "$src/tools/plot" "$out" >/dev/null 2>&1 || fail "tools/plot on $out"
+sed -i 's/$/\r/' "$out/plots/.rccm-plots"   # the results copied through another system: CRLF line ends
 check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force: $(cat "$work/err")"
 [ -e "$out/plots" ] && fail "--force left plots/ with only tools/plot's files in it: $(ls -A "$out/plots")"
 
