@@ -211,7 +211,7 @@ SmallStrainCheck::SmallStrainCheck(const Mesh& mesh) : mesh_(mesh), first_(mesh.
     const double centre = k == 3 ? 1.0 / 3 : 0.0;
     const Shape s = mesh.dim == 3 ? shape_3d(mesh, cell, centre_3d(k)) : shape_2d(mesh, cell, centre, centre);
     gradients_.block(0, first_[c], mesh.dim, k) = s.dNx;
-    double dV = s.det * (mesh.dim == 3 ? (k == 4 ? 1.0 / 6 : 8.0) : (k == 3 ? 0.5 : 4.0));  // the centre's weight: the cell's volume
+    double dV = s.det * (mesh.dim == 3 ? (k == 4 ? 1.0 / 6 : 8.0) : (k == 3 ? 0.5 : 4.0));  // the cell's volume by its centre (exact for T3, T4 and parallelograms)
     if (mesh.dim == 2 && mesh.axisymmetric) {
       gradients_.block(2, first_[c], 1, k) = s.N.transpose() / s.r;  // the hoop u_r / r
       dV *= 2 * M_PI * s.r;
@@ -224,7 +224,8 @@ DeformationExcess SmallStrainCheck::operator()(const Eigen::VectorXd& u, double 
   DeformationExcess e;
   const int dim = mesh_.dim;
   const std::size_t bodies = mesh_.body_names.size();
-  std::vector<double> volume(bodies, 0.0), beyond(bodies, 0.0);
+  std::vector<double> volume(bodies, 0.0), beyond(bodies, 0.0), largest(bodies, 0.0);
+  std::vector<int> where(bodies, -1);
   for (std::size_t c = 0; c < mesh_.cells.size(); ++c) {
     const double dV = volume_[static_cast<Eigen::Index>(c)];
     const int body = mesh_.cell_body[c];
@@ -241,12 +242,13 @@ DeformationExcess SmallStrainCheck::operator()(const Eigen::VectorXd& u, double 
     // |H|_2 <= |H|_F: the largest singular value only where it may pass the limit.
     if (H.norm() <= limit) continue;
     const double norm = H.operatorNorm();
-    if (norm <= limit) continue;
+    if (!(norm > limit)) continue;
     beyond[body] += dV;
-    if (norm > e.largest) e.largest = norm, e.cell = static_cast<int>(c);
+    if (norm > largest[body]) largest[body] = norm, where[body] = static_cast<int>(c);
   }
   for (std::size_t b = 0; b < bodies; ++b)
-    if (beyond[b] > e.fraction * volume[b]) e.fraction = beyond[b] / volume[b], e.body = static_cast<int>(b);
+    if (beyond[b] > e.fraction * volume[b])
+      e.fraction = beyond[b] / volume[b], e.body = static_cast<int>(b), e.largest = largest[b], e.cell = where[b];
   return e;
 }
 

@@ -191,7 +191,7 @@ void Recorder::note_deformation(const AcceptedStep& a) {
   for (int n : mesh.cells[e.cell]) centre += mesh.nodes[n] / double(mesh.cells[e.cell].size());
   char text[600];
   std::snprintf(text, sizeof text,
-                "t = %g s: the displacement gradient |grad u| exceeds %g over %.1f %% of body '%s' (at most %.3g, at "
+                "t = %g s: the displacement gradient |grad u| exceeds %g over %.1f %% of body '%s' (at most %.3f, at "
                 "%s): beyond the small strains and rotations of linear elasticity (a rotation by %g rad alone strains "
                 "a linear model by %.2g), its stresses and forces there are not to be trusted; lower the load or read "
                 "the run as qualitative",

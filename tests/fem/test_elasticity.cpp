@@ -12,6 +12,7 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 
 using namespace rccm;
@@ -143,9 +144,63 @@ TEST_CASE("the share beyond the limit is by volume and per body: a strip bent by
   const DeformationExcess lower = check(u, 0.24);
   CHECK(lower.fraction == Approx(1.0).epsilon(1e-12));
   CHECK(lower.body == 1);
-  // Below 0.25 k: the left body's cells beyond 0.05 are [1, 2] and [2, 3], two thirds of it,
-  // the right body wholly: the larger share is the right body's.
-  CHECK(check(u, 0.05).fraction == Approx(1.0).epsilon(1e-12));
+  // At 0.6 k the left body's cells [1, 2] and [2, 3] are beyond, two thirds of it, the right
+  // body wholly: the larger share is the right body's.
+  const DeformationExcess both = check(u, 0.06);
+  CHECK(both.fraction == Approx(1.0).epsilon(1e-12));
+  CHECK(both.body == 1);
+}
+
+TEST_CASE("the note's body, largest gradient and cell are those of the body with the largest share", "[elasticity]") {
+  // Unit squares with nodes of their own, each sheared uniformly (u_y = g x): body "stiff"
+  // has ten cells, one of them at g = 0.9 (a point load's cell); body "soft" has two at g =
+  // 0.2 and 0.3. Beyond 0.15: a tenth of "stiff", all of "soft": "soft", at most 0.3, its
+  // second cell (not the 0.9 of the other body).
+  Mesh m;
+  const std::vector<double> shear = {0, 0, 0.9, 0, 0, 0, 0, 0, 0, 0, 0.2, 0.3};
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(2 * 4 * static_cast<Eigen::Index>(shear.size()));
+  for (std::size_t c = 0; c < shear.size(); ++c) {
+    const int first = m.num_nodes();
+    for (const auto& xy : {std::pair{0.0, 0.0}, {1.0, 0.0}, {1.0, 1.0}, {0.0, 1.0}}) {
+      m.nodes.emplace_back(2.0 * c + xy.first, xy.second, 0.0);
+      u[2 * (m.num_nodes() - 1) + 1] = shear[c] * m.nodes.back().x();
+    }
+    m.cells.push_back({first, first + 1, first + 2, first + 3});
+    m.cell_body.push_back(c < 10 ? 0 : 1);
+  }
+  m.body_names = {"stiff", "soft"};
+  const DeformationExcess e = SmallStrainCheck(m)(u, 0.15);
+  CHECK(e.body == 1);
+  CHECK(e.fraction == Approx(1.0).epsilon(1e-12));
+  CHECK(e.largest == Approx(0.3).epsilon(1e-12));
+  CHECK(e.cell == 11);
+}
+
+TEST_CASE("a body of H8 and T4 cells weighs each by its volume: u_y = k x^2 / 2 beyond the limit in the T4 half only",
+          "[elasticity]") {
+  // Two unit cubes along x: [0, 1] an H8 (slope k/2 at its centre), [1, 2] as the six T4 of
+  // Kuhn's split (their nodes at x = 1 and 2: slope 3k/2 exactly). Beyond k: the T4, half of
+  // the body's volume (six of its seven cells).
+  MeshParams p;
+  p.size = {2.0, 1.0};
+  p.depth = 1.0;
+  p.nx = 2, p.ny = 1, p.nz = 1;
+  p.dimension = 3;
+  p.element = ElementType::H8;
+  Mesh m = make_box(p);
+  const std::vector<int> hexahedron = m.cells[0].front() == 0 ? m.cells[0] : m.cells[1];
+  const Mesh split = kuhn_tetrahedra(m);
+  m.cells = {hexahedron};
+  for (const std::vector<int>& t : split.cells)
+    if (std::all_of(t.begin(), t.end(), [&](int n) { return m.nodes[n].x() >= 1.0; })) m.cells.push_back(t);
+  REQUIRE(m.cells.size() == 7);
+  m.cell_body.assign(7, 0);
+  const double k = 0.2;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs());
+  for (int n = 0; n < m.num_nodes(); ++n) u[m.dof(n, 1)] = k * m.nodes[n].x() * m.nodes[n].x() / 2;
+  const DeformationExcess e = SmallStrainCheck(m)(u, k);
+  CHECK(e.fraction == Approx(0.5).epsilon(1e-12));
+  CHECK(e.largest == Approx(1.5 * k).epsilon(1e-12));
 }
 
 TEST_CASE("an axisymmetric body's share is by ring volume: a radial shift c beyond the limit near the axis only",

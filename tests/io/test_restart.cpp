@@ -132,7 +132,8 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains("checkpoint.txt: the run reached time.T = ") && Catch::Contains(" s: there is nothing to go on with"));
     CHECK(test::read_text(parts + "/report.txt") == report);
     CHECK(fs::exists(parts + "/mesh_0003.vtu"));
-    // So is it after a copy through another system (CRLF line ends in the report and the checkpoint).
+    // So is it after a copy through another system (CRLF line ends in the report and the checkpoint;
+    // a guard: the report's status is matched by its prefix, the checkpoint's reader drops the CR).
     for (const char* name : {"/report.txt", "/checkpoint.txt"}) {
       std::string text = test::read_text(parts + name), crlf;
       for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);

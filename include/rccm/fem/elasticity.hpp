@@ -30,7 +30,7 @@ CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_mater
 struct DeformationExcess {
   double fraction = 0;  // the largest share of a body's volume (each cell at its centre) where |H|_2 > limit
   int body = -1;        // that body (-1: none exceeds the limit)
-  double largest = 0;   // the largest |H|_2 of the cells beyond the limit (0: none)
+  double largest = 0;   // the largest |H|_2 in that body (0: none)
   int cell = -1;        // the cell where it is
 };
 
