@@ -422,7 +422,7 @@ TEST_CASE("config/coating-curved.cfg: a coating peeled from a rigid cylinder deb
   CHECK(checks.bonded_friction == 0.0);   // no friction while fully bonded
   CHECK(checks.max_compression > 0.0);    // ahead of the front the layer presses on the cylinder
   CHECK(r.energy.relative_error() < 1e-4);
-  CHECK(r.warnings.empty());  // within small strains (|grad u| at most 0.108): no note of large deformation
+  CHECK(r.warnings.empty());  // no note of large deformation: |grad u| reaches 0.141 in one cell of 240
   // The front: pairs lose their adhesion in order of decreasing angle (from the pulled end),
   // the debonded part is one run from the pulled end that grows through the output times
   // (2, 5 and 10 s) and has not reached the far end.
