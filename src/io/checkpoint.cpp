@@ -17,7 +17,7 @@ namespace {
 
 // 2: no step records (history.csv holds them); 3: contact_nodes; 4: the settings fingerprint
 // without the numerical controls (a failed run restarts with them changed)
-const char* const magic = "rccm-checkpoint-5";
+const char* const magic = "rccm-checkpoint-6";
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
 class RecordWriter {
@@ -153,6 +153,9 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
   }
   w.vector("diagnostics", Eigen::Map<const Eigen::VectorXd>(c.diagnostics.data(), Eigen::Index(c.diagnostics.size())));
   w.vector("excursion", Eigen::Vector3d(c.excursion.size, c.excursion.t, c.excursion.node));
+  w.number("notes", double(c.notes.said.size()));
+  for (const std::string& note : c.notes.said) w.text("note", note);
+  w.vector("deformation", Eigen::Vector2d(c.notes.deformation_noted, c.notes.deformation_checked));
   w.vector("contact_nodes",
            Eigen::Map<const Eigen::VectorXi>(c.contact_nodes.data(), Eigen::Index(c.contact_nodes.size())).cast<double>());
   w.text("end", "");
@@ -243,6 +246,12 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   r.check(excursion.size() == 3 && finite(excursion) && excursion[2] >= -1 && excursion[2] < m,
           "excursion must be 3 numbers (size, t, contact node)");
   c.excursion = {excursion[0], excursion[1], int(excursion[2])};
+  for (long k = r.count("notes", 1e3); k > 0; --k) c.notes.said.push_back(r.text("note"));
+  const Eigen::VectorXd deformation = r.vector("deformation");
+  r.check(deformation.size() == 2 && (deformation[0] == 0 || deformation[0] == 1) && deformation[1] <= c.state.t,
+          "deformation must be 2 numbers (noted 0 or 1, the last check's time, at most t)");
+  c.notes.deformation_noted = deformation[0] == 1;
+  c.notes.deformation_checked = deformation[1];
   const Eigen::VectorXd nodes = r.vector("contact_nodes");
   r.check(nodes.size() == m && (nodes.array() >= 0).all() && (nodes.array() < 2147483647.0).all() &&
               (nodes.array() == nodes.array().floor()).all(),  // NaN and inf fail the comparisons

@@ -121,6 +121,7 @@ void Recorder::start(BetaOde& ode) {
   if (writer_) result_.steps = writer_->resumed_steps();  // processes other than 0 write nothing (la/parallel.hpp)
   result_.restarted_at = resume_->state.t;
   rows_step_ = resume_->step;
+  notes_ = resume_->notes;
   result_.peak_force = p.peak_force;
   result_.peak_time = p.peak_time;
   earlier_ = p.integrator;
@@ -182,11 +183,12 @@ void Recorder::note_deformation(const AcceptedStep& a) {
   // of the bodies, not one cell: the cells under a point load or at a crack tip exceed any
   // limit as the mesh is refined. Checked every T / deformation_checks of time and at T:
   // at every step it cost 3 % of B1 x16's run.
-  if (deformation_noted_ || (a.t < deformation_checked_ + cfg_.time.T / deformation_checks && a.t < cfg_.time.T)) return;
-  deformation_checked_ = a.t;
+  if (notes_.deformation_noted || (a.t < notes_.deformation_checked + cfg_.time.T / deformation_checks && a.t < cfg_.time.T))
+    return;
+  notes_.deformation_checked = a.t;
   const DeformationExcess e = (*small_strains_)(body_.u, small_strain_limit);
   if (e.fraction <= small_strain_fraction) return;
-  deformation_noted_ = true;
+  notes_.deformation_noted = true;
   const Mesh& mesh = model_->mesh();
   Eigen::Vector3d centre = Eigen::Vector3d::Zero();
   for (int n : mesh.cells[e.cell]) centre += mesh.nodes[n] / double(mesh.cells[e.cell].size());
@@ -202,7 +204,7 @@ void Recorder::note_deformation(const AcceptedStep& a) {
 }
 
 void Recorder::note(const std::string& text) {
-  run_notes_.push_back(text);
+  notes_.said.push_back(text);
   if (options_.write_files) say_note(text, options_.progress ? "\n" : "");
 }
 
@@ -214,7 +216,7 @@ void Recorder::say_note(const std::string& text, const char* lead) const {
 void Recorder::save_checkpoint() {
   Checkpoint c{cfg_.settings,           ode_->steps(),              integrator_->last_step(), ode_->committed(),
                energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}, {},
-               model_->springs_beta()};
+               model_->springs_beta(),  notes_};
   c.progress.snapshots = result_.snapshots;
   c.progress.peak_force = result_.peak_force;
   c.progress.peak_time = result_.peak_time;
@@ -268,7 +270,7 @@ RunResult Recorder::close(const std::string& stopped) {
   result_.energy = energy_->terms();
   result_.warnings = model_->interface().notes;
   for (const std::string& w : integrator_->warnings()) result_.warnings.push_back(w);
-  result_.warnings.insert(result_.warnings.end(), run_notes_.begin(), run_notes_.end());
+  result_.warnings.insert(result_.warnings.end(), notes_.said.begin(), notes_.said.end());
   for (const std::string& w : ode_->warnings()) result_.warnings.push_back(w);
   result_.wall_seconds = seconds();
   if (writer_) write_reports(writer_->directory(), cfg_, result_);

@@ -247,6 +247,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   c.energy = {1.0 / 3, 2.0 / 3, -1e-17, 3.5, 0.1, -0.0};
   c.diagnostics = {44.95, 7};
   c.excursion = {0.25, 0.6, 2};
+  c.notes = {{"t = 0.1 s: a note, with: punctuation 'and' (quotes)", "another"}, true, 0.125};
   c.contact_nodes = {7, 3, 100000, 0, 5};
   c.springs_beta = (c.state.beta + Eigen::VectorXd::Constant(5, 1.0 / 3)).cwiseMin(1.0);
   c.progress.peak_force = {203.51};
@@ -273,6 +274,9 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   CHECK(r.excursion.node == 2);
   CHECK(r.contact_nodes == c.contact_nodes);
   CHECK(r.springs_beta == c.springs_beta);
+  CHECK(r.notes.said == c.notes.said);
+  CHECK(r.notes.deformation_noted);
+  CHECK(r.notes.deformation_checked == 0.125);
   CHECK(r.progress.peak_force == c.progress.peak_force);
   CHECK(r.progress.solves.sweeps == c.progress.solves.sweeps);
   CHECK(r.progress.integrator.rejected == c.progress.integrator.rejected);
@@ -333,7 +337,7 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   // A checkpoint of an earlier version (format 2: no contact_nodes) is not called damaged.
   std::ofstream(checkpoint_path(dir)) << "rccm-checkpoint-2" << text.substr(text.find('\n'));
   CHECK_THAT(message(cfg), Catch::Contains("checkpoint.txt: written by another version of rccm (format rccm-checkpoint-2, "
-                                           "this version reads rccm-checkpoint-5)"));
+                                           "this version reads rccm-checkpoint-6)"));
   fs::remove_all(dir);
 }
 
@@ -464,4 +468,28 @@ time = { T = 1.0; };
     INFO(change);
     CHECK(test::config_from_text(box, {change}).settings != fp3);
   }
+}
+
+TEST_CASE("a restart keeps what the run said before it: the small-strain note once, at its first time", "[restart]") {
+  // config/coating-curved.cfg lifted 4 mm notes that the coating leaves small strains at
+  // t ~ 1.72 s; stopped at its first step after t = 2.5 s and restarted, the final report holds
+  // that note once, with the time of the uninterrupted run's.
+  const std::string whole = fs::temp_directory_path() / "rccm_notes_whole", parts = fs::temp_directory_path() / "rccm_notes_parts";
+  const auto cfg = [](const std::string& dir) {
+    return load_config(RCCM_SOURCE_DIR "/config/coating-curved.cfg",
+                       {"loads.[0].value=4.0", "output.directory=\"" + dir + "\"", "output.checkpoint_steps=10"});
+  };
+  const RunResult reference = run(cfg(whole));
+  REQUIRE(reference.warnings.size() == 1);
+  const auto after = std::find_if(reference.steps.begin(), reference.steps.end(), [](const StepRecord& s) { return s.t > 2.5; });
+  REQUIRE(after != reference.steps.end());
+  request_stop(0);
+  REQUIRE_THROWS_AS(run(cfg(parts), false, after->step), Interrupted);
+  request_stop(0);
+  REQUIRE(read_checkpoint(parts, cfg(parts)).notes.deformation_noted);
+  const RunResult restarted = run(cfg(parts), true);
+  CHECK(restarted.warnings == reference.warnings);
+  CHECK_THAT(test::read_text(parts + "/report.txt"), Catch::Contains(reference.warnings[0]));
+  fs::remove_all(whole);
+  fs::remove_all(parts);
 }

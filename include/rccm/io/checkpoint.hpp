@@ -29,6 +29,7 @@ struct Checkpoint {
   std::vector<int> contact_nodes;  // the mesh node of each pair, in the pairs' order (a restart
                                    // checks that its model lists them alike)
   Eigen::VectorXd springs_beta;    // the beta of K0's springs (Model::springs_beta): state.y is of them
+  RunNotes notes;                  // what the run has said so far
 };
 
 /// The checkpoint's path in a result directory.

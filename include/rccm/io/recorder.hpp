@@ -93,10 +93,8 @@ class Recorder {
   IntegratorStats earlier_;   // counts of the run a restart continues
   RunResult result_;
   int tiny_steps_ = 0;                    // accepted steps in a row below 1e-7 T
-  std::vector<std::string> run_notes_;  // said once each while the run runs, and in the report's warnings
+  RunNotes notes_;                        // said while the run runs (and before a restart)
   std::unique_ptr<SmallStrainCheck> small_strains_;
-  bool deformation_noted_ = false;      // note_deformation has spoken
-  double deformation_checked_ = -1e300;  // the time note_deformation last measured
   int rows_step_ = -1;                    // the last accepted step whose CSV rows are written
 };
 

@@ -30,6 +30,14 @@ struct StepRecord {
   double cpu_seconds = 0;
 };
 
+/// What a run has said while it ran (Recorder: a crawl, a body leaving small strains), kept
+/// by its checkpoints so that a restart's report still holds it and does not say it again.
+struct RunNotes {
+  std::vector<std::string> said;      // each once, in order; the report's warnings repeat them
+  bool deformation_noted = false;     // the small-strain note is among them
+  double deformation_checked = -1e300;  // the time small strains were last checked, s
+};
+
 struct RunResult {
   std::vector<Snapshot> snapshots;  // at the output times and at T
   std::vector<int> watched;         // contact pair of each output.watch point
