@@ -13,8 +13,7 @@ namespace {
 
 /// A cell's shape functions at a point: their derivatives in x, y (, z) (dim x k), their
 /// values N, det J, and (2D) the radius r = x of the point.
-/// Sized at run time up to H8's 3 x 8 without the heap: an accepted step measures every cell
-/// (SmallStrainCheck).
+/// Sized at run time up to H8's 3 x 8 without the heap (assembly builds one per quadrature point).
 struct Shape {
   Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 8> dNx;
   Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1> N;

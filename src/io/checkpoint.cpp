@@ -16,7 +16,8 @@ namespace rccm {
 namespace {
 
 // 2: no step records (history.csv holds them); 3: contact_nodes; 4: the settings fingerprint
-// without the numerical controls (a failed run restarts with them changed)
+// without the numerical controls (a failed run restarts with them changed); 5: the springs' beta
+// and the condensation counts; 6: the notes the run has said (RunNotes)
 const char* const magic = "rccm-checkpoint-6";
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.

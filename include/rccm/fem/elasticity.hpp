@@ -34,8 +34,8 @@ struct DeformationExcess {
   int cell = -1;        // the cell where it is
 };
 
-/// Measures a mesh's displacements at every accepted step: the cells' shape gradients at
-/// their centres are computed once (a check then costs a few products per cell).
+/// Measures a mesh's displacements as a run goes (Recorder::note_deformation): the cells'
+/// shape gradients at their centres are computed once, a check then costs a few products per cell.
 class SmallStrainCheck {
  public:
   explicit SmallStrainCheck(const Mesh& mesh);
