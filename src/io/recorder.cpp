@@ -157,10 +157,10 @@ void Recorder::step(const AcceptedStep& a) {
     writer_->frame(a.state, body_);
   if (options_.step_log) log_step(*options_.step_log, a);
   if (options_.progress) progress_line(a, cfg_.time.T);
+  note_crawl(a);
+  note_deformation(a);  // before a checkpoint of this step: it keeps what the step said
   if (writer_ && integrator_ && cfg_.output.checkpoint_steps > 0 && a.step % cfg_.output.checkpoint_steps == 0)
     save_checkpoint();
-  note_crawl(a);
-  note_deformation(a);
   if (options_.observer) options_.observer(a);
 }
 
