@@ -13,10 +13,9 @@ namespace {
 
 /// A cell's shape functions at a point: their derivatives in x, y (, z) (dim x k), their
 /// values N, det J, and (2D) the radius r = x of the point.
-/// Sized at run time up to H8's 3 x 8 without the heap (assembly builds one per quadrature point).
 struct Shape {
-  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 8> dNx;
-  Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 8, 1> N;
+  Eigen::MatrixXd dNx;
+  Eigen::VectorXd N;
   double det = 0, r = 0;
 };
 
@@ -24,7 +23,7 @@ struct Shape {
 /// reference square [-1, 1]^2.
 Shape shape_2d(const Mesh& mesh, const std::vector<int>& cell, double xi, double eta) {
   const int k = static_cast<int>(cell.size());
-  Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, 4> dN(2, k);  // derivatives of the shape functions in the reference cell
+  Eigen::MatrixXd dN(2, k);  // derivatives of the shape functions in the reference cell
   Shape s;
   s.N.resize(k);
   if (k == 3) {
@@ -37,7 +36,7 @@ Shape shape_2d(const Mesh& mesh, const std::vector<int>& cell, double xi, double
     s.N << (1 - xi) * (1 - eta), (1 + xi) * (1 - eta), (1 + xi) * (1 + eta), (1 - xi) * (1 + eta);
     s.N *= 0.25;
   }
-  Eigen::Matrix<double, Eigen::Dynamic, 2, 0, 4, 2> X(k, 2);
+  Eigen::MatrixXd X(k, 2);
   for (int a = 0; a < k; ++a) X.row(a) = mesh.nodes[cell[a]].head<2>().transpose();
   const Eigen::Matrix2d J = dN * X;
   s.det = J.determinant();
@@ -53,8 +52,7 @@ Shape shape_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vect
   static const double corner[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
                                       {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
   const int k = static_cast<int>(cell.size());
-  Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 8> dN(3, k);
-  Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 8, 3> X(k, 3);
+  Eigen::MatrixXd dN(3, k), X(k, 3);
   for (int a = 0; a < k; ++a) X.row(a) = mesh.nodes[cell[a]].transpose();
   if (k == 4) {  // N = 1 - xi - eta - zeta, xi, eta, zeta
     dN << -1, 1, 0, 0, -1, 0, 1, 0, -1, 0, 0, 1;
@@ -97,7 +95,7 @@ double strain_matrix(const Mesh& mesh, const std::vector<int>& cell, double xi, 
 double strain_matrix_3d(const Mesh& mesh, const std::vector<int>& cell, const Eigen::Vector3d& r, Eigen::MatrixXd& B) {
   const int k = static_cast<int>(cell.size());
   const Shape s = shape_3d(mesh, cell, r);
-  const auto& d = s.dNx;
+  const Eigen::MatrixXd& d = s.dNx;
   B.setZero(6, 3 * k);
   for (int a = 0; a < k; ++a) {
     B(0, 3 * a) = d(0, a);
