@@ -124,6 +124,17 @@ inline double interpolate(const std::vector<double>& x, const std::vector<double
   return y[k - 1] + s * (y[k] - y[k - 1]);
 }
 
+/// The built-in box of nx x ny x nz H8 cells over lx x ly x lz mm (make_box).
+inline MeshParams box(double lx, double ly, double lz, int nx, int ny, int nz) {
+  MeshParams p;
+  p.size = {lx, ly};
+  p.depth = lz;
+  p.nx = nx, p.ny = ny, p.nz = nz;
+  p.dimension = 3;
+  p.element = ElementType::H8;
+  return p;
+}
+
 /// A 2 x 2 patch of Q4 (or 8 T3) cells on [1, 3] x [0, 2] with its middle node moved off
 /// centre, and its boundary edges.
 inline Mesh distorted_patch(bool triangles, bool axisymmetric) {

@@ -19,17 +19,6 @@ using namespace rccm;
 
 namespace {
 
-/// A box of 2 x 2 x 3 H8 cells over 2 x 1 x 3 mm.
-Mesh box() {
-  MeshParams p;
-  p.size = {2.0, 1.0};
-  p.depth = 3.0;
-  p.nx = 2, p.ny = 2, p.nz = 3;
-  p.dimension = 3;
-  p.element = ElementType::H8;
-  return make_box(p);
-}
-
 /// Each H8 of `m` as the six T4 of Kuhn's split along its diagonal 0-6, each of positive volume.
 Mesh kuhn_tetrahedra(Mesh m) {
   static const int path[6][2] = {{1, 2}, {1, 5}, {3, 2}, {3, 7}, {4, 5}, {4, 7}};
@@ -80,7 +69,8 @@ TEST_CASE("a rigid rotation by theta has |grad u| = 2 sin(theta/2) in every cell
 
 TEST_CASE("a rigid rotation by theta has |grad u| = 2 sin(theta/2) in every cell: H8 and T4 about any axis", "[elasticity]") {
   for (bool tetrahedra : {false, true}) {
-    const Mesh m = tetrahedra ? kuhn_tetrahedra(box()) : box();
+    const Mesh box = make_box(test::box(2.0, 1.0, 3.0, 2, 2, 3));
+    const Mesh m = tetrahedra ? kuhn_tetrahedra(box) : box;
     const char* element = tetrahedra ? "T4" : "H8";
     const Eigen::Matrix3d R = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1.0, -2.0, 0.5).normalized()).toRotationMatrix();
     INFO(element);
@@ -181,13 +171,7 @@ TEST_CASE("a body of H8 and T4 cells weighs each by its volume: u_y = k x^2 / 2 
   // Two unit cubes along x: [0, 1] an H8 (slope k/2 at its centre), [1, 2] as the six T4 of
   // Kuhn's split (their nodes at x = 1 and 2: slope 3k/2 exactly). Beyond k: the T4, half of
   // the body's volume (six of its seven cells).
-  MeshParams p;
-  p.size = {2.0, 1.0};
-  p.depth = 1.0;
-  p.nx = 2, p.ny = 1, p.nz = 1;
-  p.dimension = 3;
-  p.element = ElementType::H8;
-  Mesh m = make_box(p);
+  Mesh m = make_box(test::box(2.0, 1.0, 1.0, 2, 1, 1));
   const std::vector<int> hexahedron = m.cells[0].front() == 0 ? m.cells[0] : m.cells[1];
   const Mesh split = kuhn_tetrahedra(m);
   m.cells = {hexahedron};

@@ -21,6 +21,19 @@ namespace fs = std::filesystem;
 
 namespace {
 
+/// `text` with CRLF line ends, as a copy through another system leaves it.
+std::string crlf(const std::string& text) {
+  std::string out;
+  for (char ch : text) out += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
+  return out;
+}
+
+/// The file at `path` turned to CRLF line ends.
+void to_crlf(const std::string& path) {
+  const std::string text = crlf(test::read_text(path));  // read before the stream truncates the file
+  std::ofstream(path, std::ios::binary) << text;
+}
+
 Config b1(const std::string& directory, std::vector<std::string> overrides) {
   overrides.push_back("output.directory=\"" + directory + "\"");
   overrides.push_back("output.checkpoint_steps=40");
@@ -134,11 +147,7 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     CHECK(fs::exists(parts + "/mesh_0003.vtu"));
     // So is it after a copy through another system (CRLF line ends in the report and the checkpoint;
     // a guard: the report's status is matched by its prefix, the checkpoint's reader drops the CR).
-    for (const char* name : {"/report.txt", "/checkpoint.txt"}) {
-      std::string text = test::read_text(parts + name), crlf;
-      for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
-      std::ofstream(parts + name, std::ios::binary) << crlf;
-    }
+    for (const char* name : {"/report.txt", "/checkpoint.txt"}) to_crlf(parts + name);
     CHECK_THROWS_WITH(run(b1(parts, c.settings), true), Catch::Contains(" s: there is nothing to go on with"));
     CHECK(fs::exists(parts + "/mesh_0003.vtu"));
     // A run cut off after its checkpoint at T, before its report (kill -9): the restart ends it.
@@ -214,11 +223,7 @@ TEST_CASE("a restart whose CSV lost the rows up to the checkpoint is refused, bo
 TEST_CASE("a restart takes up CSVs with CRLF line ends and leaves them with LF alone", "[restart]") {
   const std::string dir = fs::temp_directory_path() / "rccm_restart_crlf";
   stop_euler_halfway(dir);
-  for (const char* name : {"/history.csv", "/curves.csv"}) {  // copied through another system
-    std::string text = test::read_text(dir + name), crlf;
-    for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
-    std::ofstream(dir + name, std::ios::binary) << crlf;
-  }
+  for (const char* name : {"/history.csv", "/curves.csv"}) to_crlf(dir + name);  // copied through another system
   const RunResult r = run(b1(dir, euler), true);
   for (const char* name : {"/history.csv", "/curves.csv"}) {
     INFO(name);
@@ -285,9 +290,7 @@ TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   CHECK(r.progress.snapshots[0].debonded_length == 11.7);
   CHECK_FALSE(fs::exists(checkpoint_path(dir) + ".tmp"));
   // The same file with CRLF line ends (copied through another system) reads back the same.
-  std::string text = test::read_text(checkpoint_path(dir)), crlf;
-  for (char ch : text) crlf += ch == '\n' ? std::string("\r\n") : std::string(1, ch);
-  std::ofstream(checkpoint_path(dir), std::ios::binary) << crlf;
+  to_crlf(checkpoint_path(dir));
   const Checkpoint w = read_checkpoint(dir, cfg);
   CHECK(w.state.beta == c.state.beta);
   CHECK(w.state.u == c.state.u);
@@ -426,9 +429,7 @@ mesh = { nx = 4; ny = 2; size = [10.0, 5.0]; };
 output = { directory = "b"; checkpoint_steps = 7; };
 )";
   CHECK(test::config_from_text(reordered).settings == fp);
-  std::string crlf;
-  for (char c : base) crlf += c == '\n' ? std::string("\r\n") : std::string(1, c);
-  CHECK(test::config_from_text(crlf).settings == fp);
+  CHECK(test::config_from_text(crlf(base)).settings == fp);
   CHECK(test::config_from_text(base, {"integrator.table=ARKODE_ARK436L2SA_DIRK_6_3_4"}).settings == fp);  // the default
   // Each setting that shapes the results changes it.
   for (const char* change :

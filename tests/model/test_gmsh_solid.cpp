@@ -70,14 +70,7 @@ struct MshPart {
   std::vector<std::pair<std::string, std::string>> curves = {};       // written as lines between the set's nodes in turn
 };
 
-Mesh plate_box(int n) {
-  MeshParams p;
-  p.size = {double(n), 1.0};
-  p.depth = n;
-  p.nx = n, p.ny = 1, p.nz = n;
-  p.element = ElementType::H8;
-  return make_box(p);
-}
+Mesh plate_box(int n) { return make_box(test::box(n, 1.0, n, n, 1, n)); }
 
 /// Writes the parts, turned by Q about the origin after their shifts, as an MSH 2.2 file
 /// (each part its own nodes) in the build tree.

@@ -23,15 +23,6 @@ using namespace rccm;
 
 namespace {
 
-MeshParams box(double lx, double ly, double lz, int nx, int ny, int nz) {
-  MeshParams p;
-  p.size = {lx, ly};
-  p.depth = lz;
-  p.nx = nx, p.ny = ny, p.nz = nz;
-  p.element = ElementType::H8;
-  return p;
-}
-
 // B1 (docs/BENCHMARKS.md) on 32 x 2 cells, in 2D on Q4 and as a 1 mm slab of H8 held at
 // u_z = 0 (plane strain), explicit Euler-210 (the material apart).
 const char* const kB1 = R"(
@@ -44,14 +35,14 @@ output = { times = [3.571, 5.143]; };
 }  // namespace
 
 TEST_CASE("H8: rigid motions are free, a uniform strain is in equilibrium, the 3D law is Hooke's", "[solid]") {
-  const Mesh m = make_box(box(3.0, 2.0, 1.5, 3, 2, 2));
+  const Mesh m = make_box(test::box(3.0, 2.0, 1.5, 3, 2, 2));
   REQUIRE(m.dim == 3);
   CHECK(m.num_nodes() == 4 * 3 * 3);
   CHECK(test::check_rigid_motions_and_patch(m, 1000.0, 0.3) == 2);
 }
 
 TEST_CASE("the box's faces: outward normals, areas, consistent nodal weights", "[solid]") {
-  const Mesh m = make_box(box(4.0, 2.0, 3.0, 4, 2, 3));
+  const Mesh m = make_box(test::box(4.0, 2.0, 3.0, 4, 2, 3));
   const std::map<std::string, std::pair<Eigen::Vector3d, double>> faces = {
       {"left", {-Eigen::Vector3d::UnitX(), 6.0}}, {"right", {Eigen::Vector3d::UnitX(), 6.0}},
       {"bottom", {-Eigen::Vector3d::UnitY(), 12.0}}, {"top", {Eigen::Vector3d::UnitY(), 12.0}},
