@@ -274,6 +274,7 @@ HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double 
 
   std::mt19937 rng(20261125);
   std::vector<Node*> level;
+  Eigen::Index coarser_rank = 0;  // the largest basis of the level above
   for (int depth = 0; level.clear(), collect(*H.root_, depth, false, level), !level.empty(); ++depth) {
     std::vector<RangeFinder> ranges;
     for (const Node* n : level) {
@@ -285,8 +286,13 @@ HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double 
       subtract_coarse(*H.root_, depth, X, Y);
       return Y;
     };
-    for (bool open = true; open;) {  // the blocks A(first, second) by their ranges
-      Eigen::MatrixXd omega = Eigen::MatrixXd::Zero(size, probes);
+    // The first round as wide as half the level above's basis (the blocks' ranks fall by less
+    // than that from level to level: no probe is wasted), the rest by rounds of `probes`: a wide
+    // block of products costs far less per column (a sparse solve streams the body's factor
+    // once per block, whatever its width up to the BLAS's).
+    Eigen::Index width = std::max<Eigen::Index>(probes, coarser_rank / 2 / probes * probes);
+    for (bool open = true; open; width = probes) {  // the blocks A(first, second) by their ranges
+      Eigen::MatrixXd omega = Eigen::MatrixXd::Zero(size, width);
       for (std::size_t k = 0; k < level.size(); ++k)
         if (!ranges[k].done) gaussian(omega.middleRows(level[k]->second->begin, level[k]->end - level[k]->second->begin), rng);
       Eigen::MatrixXd Y = products(omega);
@@ -301,6 +307,7 @@ HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double 
     // A(second, first) Q = B^T Q (A symmetric), B ~ Q (B^T Q)^T; and A(second, first) = B^T.
     Eigen::Index rank = 0;
     for (const RangeFinder& r : ranges) rank = std::max(rank, r.Q.cols());
+    coarser_rank = rank;
     Eigen::MatrixXd Q = Eigen::MatrixXd::Zero(size, rank);
     for (std::size_t k = 0; k < level.size(); ++k)
       Q.block(level[k]->begin, 0, ranges[k].Q.rows(), ranges[k].Q.cols()) = ranges[k].Q;

@@ -197,3 +197,32 @@ TEST_CASE("HODLR: a singular diagonal block gives a solution that is not finite"
   const HodlrMatrix H(A, 1e-13 * A.norm(), 16, 1);
   CHECK_FALSE(HodlrSolver(H).solve(Eigen::VectorXd::Ones(128)).allFinite());
 }
+
+TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where the ranks are high", "[hodlr]") {
+  // Points of a square grid in the grid's bisection order, a smooth kernel between them: as on
+  // an interface surface, the blocks' ranks are high and fall slowly from level to level. Each
+  // level's first round of probes is half as wide as the level above's basis, so the products
+  // come in far fewer blocks than rounds of 8 probes would take (a block of products is a
+  // sparse solve of the whole body), without more columns in all.
+  const int side = 32, m = side * side;
+  Eigen::MatrixXd A(m, m);
+  const auto x = [&](int i) { return Eigen::Vector2d(i % side, i / side); };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + (x(i) - x(j)).norm());
+  A.diagonal().array() += 2.0;
+  Eigen::Index columns = 0, blocks = 0;
+  const auto products = [&](const Eigen::MatrixXd& X) {
+    columns += X.cols(), ++blocks;
+    return Eigen::MatrixXd(A * X);
+  };
+  const double relative = 1e-10, scale = A.diagonal().maxCoeff();
+  const HodlrMatrix P = HodlrMatrix::symmetric(m, products, relative, 32, 1);
+  const HodlrMatrix D(A, relative * scale, 32, 1);
+  // Rounds of 8 alone: 71 blocks and 1056 columns (ranks 144 peeled, 166 direct).
+  CHECK(blocks <= 55);
+  CHECK(columns <= 1100);
+  CHECK(P.max_rank() <= D.max_rank() + 8);
+  std::srand(6);
+  const Eigen::VectorXd v = Eigen::VectorXd::Random(m);
+  CHECK((P.multiply(v) - A * v).norm() <= 100 * relative * scale * v.norm());
+}
