@@ -2,7 +2,8 @@
 # The command line as a hostile or hurried user meets it (issue 15):
 #  1. malformed --set paths and values are bad input (exit 2, the path named; two settings in
 #     one value too, not the first kept and the second dropped), a bare path is a
-#     string, -o DIR writes there, --restart '' is refused; a doubtful interface warns;
+#     string, -o DIR writes there (a DIR named like a number or "." too), --restart '' is
+#     refused, a directory as mesh.file is bad input; a doubtful interface warns;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too
 #     (its manifest read with CRLF line ends as well);
@@ -53,6 +54,21 @@ check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare pat
 [ -s "$work/bare path/history.csv" ] || fail "a bare path for output.directory: no history.csv there"
 check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/dash-o" >/dev/null 2>"$work/err" || fail "-o DIR: $(cat "$work/err")"
 [ -s "$work/dash-o/report.txt" ] || fail "-o DIR: no report there"
+# -o and --restart take any directory name, one that reads like a number or "." too (they were
+# parsed as libconfig values: "-o 2024: output.directory must be a string (got an integer)").
+mkdir "$work/cwd"
+for dir in 2024 1e3 .; do
+  check; (cd "$work/cwd" && "$rccm" run "$b1" -q "${short[@]}" -o "$dir" >/dev/null 2>"$work/err") || fail "-o $dir: $(cat "$work/err")"
+  [ -s "$work/cwd/$dir/report.txt" ] || fail "-o $dir: no report there"
+done
+check; (cd "$work/cwd" && "$rccm" run "$b1" -q "${short[@]}" --restart 2024 >/dev/null 2>"$work/err"); rc=$?
+[ "$rc" -eq 2 ] && grep -q "2024/checkpoint.txt: the run reached time.T" "$work/err" || fail "--restart 2024 of a finished run: exit $rc, $(cat "$work/err")"
+# A mesh.file that is a directory is bad input, named (not an internal error of the file read).
+mkdir -p "$work/meshdir/dir.msh"
+printf 'mesh = { file = "dir.msh"; };\n' > "$work/meshdir/m.cfg"
+check; "$rccm" run "$work/meshdir/m.cfg" -q -o "$work/never" 2>"$work/err" >/dev/null; rc=$?
+[ "$rc" -eq 2 ] && grep -qF "m.cfg:1: mesh.file: $work/meshdir/dir.msh is a directory" "$work/err" || fail "a directory as mesh.file: exit $rc, $(cat "$work/err")"
+[ -e "$work/never" ] && fail "a directory as mesh.file: wrote $work/never"
 
 # Options out of range say their range in words a user reads (not 1.8e308 written out).
 for args in "sweep $b1 --set interface.alpha=1,2 -j 0" "compare $b1 --euler-steps 0" "bench --scale-time 0"; do

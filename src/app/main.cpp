@@ -236,7 +236,7 @@ int main(int argc, char** argv) {
     }
     // A restart writes where the run it continues wrote; -o is output.directory.
     if (!restart_dir.empty()) output_dir = restart_dir;
-    if (!output_dir.empty()) overrides.push_back("output.directory=" + output_dir);
+    if (!output_dir.empty()) overrides.push_back(rccm::string_override("output.directory", output_dir));
     const rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (*run) {
       rccm::RunOptions options;

@@ -119,7 +119,7 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
   for (SweepCase& c : cases) {
     c.overrides.insert(c.overrides.begin(), fixed.begin(), fixed.end());
     std::vector<std::string> all = c.overrides;
-    all.push_back("output.directory=" + directory + "/" + c.name);
+    all.push_back(string_override("output.directory", directory + "/" + c.name));
     c.config = load_config(config_file, all);
   }
   return cases;

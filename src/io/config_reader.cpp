@@ -284,6 +284,13 @@ void check_integer_literals(const std::string& text, const std::function<std::st
   }
 }
 
+/// `text` as a libconfig string literal: quoted, its quotes and backslashes escaped.
+std::string string_literal(const std::string& text) {
+  std::string quoted = "\"";
+  for (char c : text) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  return quoted + "\"";
+}
+
 /// A setting name of a --set path: letters, digits, '_', '-', '*', starting with a letter.
 bool setting_name(const std::string& part) {
   return !part.empty() && std::isalpha(static_cast<unsigned char>(part[0])) &&
@@ -310,9 +317,7 @@ void apply_override(libconfig::Config& cfg, const std::string& item) {
   } catch (const libconfig::ParseException& e) {
     if (structured || given.empty())
       throw fail("cannot parse the value '" + given + "' (" + syntax_hint(e.getError()) + ")");
-    std::string quoted = "\"";
-    for (char c : given) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
-    value.readString("v = " + quoted + "\";");
+    value.readString("v = " + string_literal(given) + ";");
   }
   if (value.getRoot().getLength() != 1)  // "10;steps=5": libconfig reads two settings, the second would be lost
     throw fail("the value '" + given + "' holds more than one setting: give each its own --set");
@@ -432,6 +437,8 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
     const std::string file = r.text(m, "file", "", true);
     if (file.empty()) r.fail(m["file"], "must not be empty");
     p.file = file[0] == '/' || config_dir.empty() ? file : config_dir + "/" + file;
+    std::error_code ec;
+    if (std::filesystem::is_directory(p.file, ec)) r.fail(m["file"], p.file + " is a directory, not a mesh file");
     if (!std::ifstream(p.file)) r.fail(m["file"], "cannot read " + p.file + " (a mesh file is found relative to the config)");
     p.contents = file_hash(p.file);
     p.refine = r.integer(m, "refine", 0);
@@ -954,6 +961,10 @@ Config parse_config(const std::string& text, const std::string& name, const std:
     throw syntax_error(e, name);
   }
   return finish(cfg, name, overrides);
+}
+
+std::string string_override(const std::string& path, const std::string& text) {
+  return path + "=" + string_literal(text);
 }
 
 }  // namespace rccm

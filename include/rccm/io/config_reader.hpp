@@ -16,4 +16,8 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
 /// The same from the text of a config (`name` stands for the file in messages).
 Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {});
 
+/// The override "path=value" that sets `path` to the string `text` whatever it reads like
+/// (-o 2024, -o .: a directory named like a number is still a string).
+std::string string_override(const std::string& path, const std::string& text);
+
 }  // namespace rccm
