@@ -9,7 +9,9 @@
 #  3. nothing but non-result arguments, or no run directory at all: exit non-zero with a
 #     message, no figure written;
 #  4. a case alpha = 0 is labelled rate-independent, without the integrator it did not use;
-#  5. its energy panel draws, for alpha = 0, the work released in snap-through (dashed).
+#  5. its energy panel draws, for alpha = 0, the work released in snap-through (dashed);
+#  6. with a support listed before the pull (the sweep's loads), panel (a) draws the pull, the
+#     load whose force is largest, and names it; the sweep's summary.csv reports its peak.
 # Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
@@ -128,6 +130,41 @@ print("; ".join(problems))
 sys.exit(1 if problems else 0)
 EOF
 then pass; else fail "panel (d)"; fi
+
+# 6. The load with the largest force, not the first: in panel (a) and in summary.csv.
+if $py - "$plot" "$sweep" "${cases[@]}" <<'EOF'
+import csv, importlib.machinery, importlib.util, os, sys
+loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
+plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
+loader.exec_module(plot)
+drawn = {}
+plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+sweep, cases = sys.argv[2], sys.argv[3:]
+plot.overlay("/nonexistent-unused", cases)
+force = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(a)")][0]
+problems = []
+summary = {r["case"]: r for r in csv.DictReader(open(os.path.join(sweep, "summary.csv")))}
+column = "peak force L1 top_left.y [N]"
+support, largest = 0.0, 0.0
+for d in cases:
+    rows = list(csv.DictReader(open(os.path.join(d, "curves.csv"))))
+    support = max([support] + [abs(float(r["L0 top_right.x force [N]"])) for r in rows])
+    pull = [float(r["L1 top_left.y force [N]"]) for r in rows]
+    peak = max(map(abs, pull))
+    largest = max(largest, peak)
+    if not any(list(l.get_ydata()) == pull for l in force.get_lines()):
+        problems.append(f"{d}: panel (a) does not draw the pull L1")
+    row = summary.get(os.path.basename(d), {})
+    if not row.get(column) or abs(abs(float(row[column])) - peak) > 1e-9 * peak:
+        problems.append(f"{d}: summary.csv's {column!r} is {row.get(column)!r}, not the pull's peak {peak}")
+if not support < 1e-3 * largest:
+    problems.append(f"the support reacts with {support} N, the pull with {largest} N: no test of the choice")
+if "top_left" not in force.get_ylabel():
+    problems.append(f"panel (a)'s force axis is {force.get_ylabel()!r}")
+print("; ".join(problems))
+sys.exit(1 if problems else 0)
+EOF
+then pass; else fail "the drawn and summarized load"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

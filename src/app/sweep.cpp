@@ -9,6 +9,7 @@
 #include "rccm/io/config_reader.hpp"
 #include "rccm/io/csv.hpp"
 #include "rccm/io/output_directory.hpp"
+#include "rccm/io/result_writer.hpp"
 #include "rccm/io/run_report.hpp"
 
 #include <algorithm>
@@ -215,6 +216,22 @@ std::string resume_command(const std::string& rccm_path, const std::string& conf
   return command + " -j " + std::to_string(jobs) + " --restart " + shell_quoted(directory);
 }
 
+namespace {
+
+/// The load whose force peaks highest over the complete cases, the one the summary reports: a
+/// support listed first may react at round-off only, and its "peak" would read as a result.
+std::size_t reported_load(const std::vector<SweepCase>& cases) {
+  std::size_t load = 0;
+  double largest = -1;
+  for (const SweepCase& c : cases)
+    if (c.status == CaseStatus::Complete)
+      for (std::size_t k = 0; k < c.result.peak_force.size(); ++k)
+        if (std::abs(c.result.peak_force[k]) > largest) largest = std::abs(c.result.peak_force[k]), load = k;
+  return load;
+}
+
+}  // namespace
+
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
                          const std::vector<SweepCase>& cases) {
   // The output times are those of the config (every case has the same unless a case sweeps them).
@@ -223,7 +240,9 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
   if (times.empty() || times.back() < T * (1 - 1e-12)) times.push_back(T);  // T once, an output time or not
   std::vector<std::string> header = {"case"};
   for (const SweepAxis& a : axes) header.push_back(a.path);
-  header.insert(header.end(), {"status", "peak force [N]", "t at peak [s]"});
+  const std::size_t load = reported_load(cases);
+  const std::string named = cases.front().config.loads.empty() ? "" : " " + load_label(cases.front().config, load);
+  header.insert(header.end(), {"status", "peak force" + named + " [N]", "t at peak [s]"});
   const bool solid = cases.front().config.mesh.dim() == 3;  // a debonded area, mm2
   for (double t : times) header.push_back("debonded at t=" + csv_number(t) + (solid ? " [mm2]" : " [mm]"));
   header.insert(header.end(), {"damage dissipation [N mm]", "friction dissipation [N mm]",
@@ -252,8 +271,8 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
     // Empty where the case has no such figure (not complete, or no snapshot at that time).
     std::vector<std::optional<double>> figures(2 + times.size() + 5);
     if (complete) {
-      figures[0] = r.peak_force.empty() ? 0.0 : r.peak_force[0];
-      figures[1] = r.peak_time.empty() ? 0.0 : r.peak_time[0];
+      figures[0] = load < r.peak_force.size() ? r.peak_force[load] : 0.0;
+      figures[1] = load < r.peak_time.size() ? r.peak_time[load] : 0.0;
       for (std::size_t k = 0; k < times.size(); ++k)
         for (const Snapshot& s : r.snapshots)
           if (std::abs(s.t - times[k]) <= 1e-12 * T) figures[2 + k] = s.debonded_length;

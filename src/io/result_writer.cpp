@@ -10,13 +10,13 @@
 
 namespace rccm {
 
-namespace {
-
 std::string load_label(const Config& cfg, std::size_t k) {
   const LoadParams& p = cfg.loads[k];
   const std::string along = p.kind == LoadKind::Pressure ? "n" : std::string(1, "xyz"[p.component]);
   return "L" + std::to_string(k) + " " + p.node_set + "." + along;
 }
+
+namespace {
 
 const char* load_unit(LoadKind kind) {
   switch (kind) {

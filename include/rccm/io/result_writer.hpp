@@ -33,6 +33,9 @@ struct ResumePoint {
 /// tributary measures of those pairs), mm. One definition for every file and plot.
 double debonded_length(const Model& model, const Eigen::VectorXd& beta);
 
+/// Load k's name in the result files' headers: "L1 top_left.y" (its number, node set and direction).
+std::string load_label(const Config& cfg, std::size_t k);
+
 class ResultWriter {
  public:
   /// Writes the CSV headers into `directory` (created and locked by the caller). With
