@@ -15,6 +15,7 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <regex>
 #include <fstream>
 #include <iterator>
 #include <cctype>
@@ -508,6 +509,10 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   p.hypothesis = static_cast<Hypothesis>(r.choice(mat, "hypothesis", {"plane_strain", "plane_stress", "axisymmetric"}, 0));
   p.orthotropic = mat.exists("E1");
   if (dim == 3 && mat.exists("hypothesis")) r.fail(mat["hypothesis"], "a 3D body has no plane hypothesis: leave it out");
+  for (const char* isotropic : {"E", "nu"})  // both kinds of material at once: not a typo of E1
+    if (p.orthotropic && mat.exists(isotropic))
+      r.fail(mat[isotropic], "an isotropic setting beside E1: give E and nu (isotropic) or E1, E2, E3, nu12, ... "
+                             "(orthotropic), not both");
   if (!p.orthotropic) {
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
@@ -894,9 +899,26 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
   }
 }
 
+/// What libconfig's "syntax error" at `line` of `file` most likely is, read from that line: a
+/// UTF-8 byte-order mark (an editor's "UTF-8 with BOM"), or a bare word where a value goes (nan,
+/// inf, a string without its quotes). Empty when the line shows neither.
+std::string line_hint(const std::string& file, int line) {
+  std::ifstream in(file, std::ios::binary);
+  std::string text;
+  for (int n = 0; n < line && std::getline(in, text);) ++n;
+  if (line == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0)
+    return "the file starts with a UTF-8 byte-order mark, which libconfig does not read: save it as plain UTF-8";
+  static const std::regex bare(R"(=\s*([A-Za-z_][A-Za-z0-9_.\-]*)\s*[;,\]\)}])");
+  std::smatch m;
+  if (std::regex_search(text, m, bare) && m[1] != "true" && m[1] != "false")
+    return "'" + m[1].str() + "' is no value: a number (1.0e3), a quoted string (\"text\"), true or false";
+  return "";
+}
+
 InputError syntax_error(const libconfig::ParseException& e, const std::string& path) {
-  return InputError(source_path(e.getFile(), path) + ":" + std::to_string(e.getLine()) +
-                    ": syntax error: " + syntax_hint(e.getError()));
+  const std::string file = source_path(e.getFile(), path), hint = line_hint(file, e.getLine());
+  return InputError(file + ":" + std::to_string(e.getLine()) + ": syntax error: " +
+                    (hint.empty() ? syntax_hint(e.getError()) : hint));
 }
 
 }  // namespace

@@ -86,6 +86,17 @@ TEST_CASE("the exact step is on by default in 2D, off in 3D, and either way when
   CHECK_FALSE(load_config(test::shipped("b1.cfg"), {"solver.active_set=false"}).solver.active_set);
 }
 
+TEST_CASE("a config saved with a UTF-8 byte-order mark is refused with what to change", "[config]") {
+  const fs::path file = fs::temp_directory_path() / "rccm_test_bom.cfg";
+  std::ofstream(file, std::ios::binary) << "\xEF\xBB\xBF" << good;
+  CHECK_THROWS_WITH(load_config(file.string()),
+                    file.string() + ":1: syntax error: the file starts with a UTF-8 byte-order mark, which libconfig "
+                                    "does not read: save it as plain UTF-8");
+  std::ofstream(file, std::ios::binary) << good;  // the same text without it
+  CHECK_NOTHROW(load_config(file.string()));
+  fs::remove(file);
+}
+
 TEST_CASE("a missing file is named", "[config]") {
   CHECK_THROWS_WITH(load_config("/nonexistent/b1.cfg"), Catch::Contains("/nonexistent/b1.cfg: cannot read"));
 }
