@@ -182,6 +182,7 @@ void Model::check_prescribed_gaps(const Config& cfg) const {
   for (const LoadCase& lc : loads_)
     for (double t : lc.amplitude.t)
       if (t > 0 && t < cfg.time.T) times.push_back(t);
+  std::sort(times.begin(), times.end());  // the first time the loads press in is the one to name
   std::vector<char> prescribed(mesh_.num_dofs(), 0);
   for (int d : supports_) prescribed[d] = 1;
   // A component of the unit normal this small (an axis-aligned normal given or computed with
