@@ -199,8 +199,9 @@ TEST_CASE("HODLR: a singular diagonal block gives a solution that is not finite"
 }
 
 TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where the ranks are high", "[hodlr]") {
-  // Points of a square grid in the grid's bisection order, a smooth kernel between them: as on
-  // an interface surface, the blocks' ranks are high and fall slowly from level to level. Each
+  // Points of a square grid in row order (each bisection halves the rows: strips as wide as the
+  // grid), a smooth kernel between them: as on an interface surface, the blocks' ranks are high
+  // and fall slowly from level to level. Each
   // level's first round of probes is half as wide as the level above's basis, so the products
   // come in far fewer blocks than rounds of 8 probes would take (a block of products is a
   // sparse solve of the whole body), without more columns in all.
