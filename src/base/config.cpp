@@ -1,5 +1,6 @@
 #include "rccm/base/config.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 
@@ -7,15 +8,32 @@ namespace rccm {
 
 namespace {
 
-/// FNV-1a of named values written exactly (doubles as hex floats).
+/// The setting a user writes for a hashed value, where its name in the hash is another.
+std::string written_as(const std::string& name) {
+  static const std::map<std::string, std::string> written{
+      {"mesh.axis", "mesh.rotation"},          {"mesh.node_sets.name", "mesh.node_sets"},
+      {"mesh.node_sets.box", "mesh.node_sets"}, {"body.name", "bodies.name"},
+      {"material.orthotropic", "material"},    {"interface.facing", "interface.normal"},
+      {"interface.centre", "interface.circle"}, {"interface.axis", "interface.circle"},
+      {"interface.radius", "interface.circle"}, {"interface.inside", "interface.circle"},
+      {"loads.kind", "loads.type"},            {"loads.t", "loads.value"},
+      {"loads.v", "loads.value"},              {"output.watch.name", "output.watch"},
+      {"output.watch.point", "output.watch"},  {"output.probes.name", "output.probes"},
+      {"output.probes.point", "output.probes"}};
+  const auto it = written.find(name);
+  return it == written.end() ? name : it->second;
+}
+
+/// FNV-1a of named values written exactly (doubles as hex floats), and one of each name's
+/// values alone (parts(): what a refused restart names).
 class Hash {
  public:
   Hash& operator()(const char* name, double v) {
     char buf[48];
     std::snprintf(buf, sizeof buf, "%s=%a;", name, v);
-    return mix(buf);
+    return mix(name, buf);
   }
-  Hash& operator()(const char* name, const std::string& v) { return mix(std::string(name) + "=" + v + ";"); }
+  Hash& operator()(const char* name, const std::string& v) { return mix(name, std::string(name) + "=" + v + ";"); }
   template <class Numbers>
   Hash& list(const char* name, const Numbers& v) {
     (*this)(name, double(v.size()));
@@ -27,18 +45,34 @@ class Hash {
     std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h_));
     return out;
   }
+  /// "name=digest name=digest ...", by name; 32 bits a name (the whole hash decides, these name).
+  std::string parts() const {
+    std::string out;
+    for (const auto& [name, h] : parts_) {
+      char digest[12];
+      std::snprintf(digest, sizeof digest, "%08llx", static_cast<unsigned long long>(h >> 32));
+      out += (out.empty() ? "" : " ") + name + "=" + digest;
+    }
+    return out;
+  }
 
  private:
-  Hash& mix(const std::string& text) {
-    for (unsigned char ch : text) h_ = (h_ ^ ch) * 1099511628211ull;
+  Hash& mix(const std::string& name, const std::string& text) {
+    auto part = parts_.try_emplace(written_as(name), basis).first;
+    for (unsigned char ch : text) {
+      h_ = (h_ ^ ch) * prime;
+      part->second = (part->second ^ ch) * prime;
+    }
     return *this;
   }
-  std::uint64_t h_ = 14695981039346656037ull;
+  static constexpr std::uint64_t basis = 14695981039346656037ull, prime = 1099511628211ull;
+  std::uint64_t h_ = basis;
+  std::map<std::string, std::uint64_t> parts_;
 };
 
-}  // namespace
-
-std::string Config::fingerprint() const {
+/// Every value that defines the problem and its time grid (Config::fingerprint).
+Hash hash_settings(const Config& c) {
+  const MeshParams& mesh = c.mesh;
   Hash h;
   h("mesh.file", mesh.contents)("mesh.refine", mesh.refine);
   for (const auto& [name, value] : mesh.parameters) h(("mesh.parameters." + name).c_str(), value);
@@ -52,14 +86,14 @@ std::string Config::fingerprint() const {
   h.list("mesh.size", mesh.size)("mesh.nx", mesh.nx)("mesh.ny", mesh.ny);
   h("mesh.depth", mesh.depth)("mesh.nz", mesh.nz)("mesh.element", double(mesh.element))("mesh.rotation", mesh.rotation);
   for (const NodeSetDef& d : mesh.node_sets) h("mesh.node_sets.name", d.name).list("mesh.node_sets.box", d.box);
-  for (const BodyParams& b : bodies) {
+  for (const BodyParams& b : c.bodies) {
     const MaterialParams& m = b.material;
     h("body.name", b.name)("material.orthotropic", m.orthotropic)("material.E", m.E)("material.nu", m.nu);
     h("material.E1", m.E1)("material.E2", m.E2)("material.E3", m.E3)("material.nu12", m.nu12)("material.nu13", m.nu13);
     h("material.nu23", m.nu23)("material.G12", m.G12)("material.G13", m.G13)("material.G23", m.G23)("material.angle", m.angle)("material.hypothesis", double(m.hypothesis));
     h.list("material.axis3", m.axis3);
   }
-  for (const InterfaceParams& p : interfaces) {
+  for (const InterfaceParams& p : c.interfaces) {
     h("interface.boundary", p.boundary)("interface.facing", double(p.facing)).list("interface.normal", p.normal);
     h.list("interface.centre", p.centre).list("interface.axis", p.axis)("interface.radius", p.radius)("interface.inside", p.inside);
     h("interface.opposite", p.opposite)("interface.tolerance", p.tolerance)("interface.precrack", p.precrack);
@@ -67,29 +101,58 @@ std::string Config::fingerprint() const {
     h("interface.w", p.w)("interface.alpha", p.alpha)("interface.mu", p.mu);
     h.list("interface.beta0", p.beta0).list("interface.g0", p.g0);
   }
-  for (const LoadParams& l : loads) {
+  for (const LoadParams& l : c.loads) {
     h("loads.node_set", l.node_set)("loads.kind", double(l.kind))("loads.component", l.component);
     h.list("loads.t", l.amplitude.t).list("loads.v", l.amplitude.v);
   }
-  h("time.T", time.T)("time.steps", time.steps);
+  h("time.T", c.time.T)("time.steps", c.time.steps);
   // Left out: the numerical controls a failure message asks to change (controls_fingerprint()
   // below), so that a failed run restarts with them changed (README "When a run fails").
-  h("solver.local_iterations", solver.local_iterations);
-  h("solver.rho", double(solver.rho))("solver.active_set", solver.active_set);
-  h("solver.springs_follow_beta", solver.springs_follow_beta);
-  h("solver.active_set_max_nodes", solver.active_set_max_nodes)("solver.compressed_min_nodes", solver.compressed_min_nodes);
+  h("solver.local_iterations", c.solver.local_iterations);
+  h("solver.rho", double(c.solver.rho))("solver.active_set", c.solver.active_set);
+  h("solver.springs_follow_beta", c.solver.springs_follow_beta);
+  h("solver.active_set_max_nodes", c.solver.active_set_max_nodes)("solver.compressed_min_nodes", c.solver.compressed_min_nodes);
   // solver.linear is left out: the body's solver changes the results by round-off only, and a
   // run interrupted in one process may go on under mpirun.
-  const IntegratorParams& A = integrator;
+  const IntegratorParams& A = c.integrator;
   // The default table spelled out is the default (hashed as empty, as before it could be named).
   const bool default_table = A.scheme == ArkodeScheme::Dirk && A.table == IntegratorParams::default_dirk_table;
   h("integrator.method", double(A.method))("integrator.scheme", double(A.scheme))
       ("integrator.table", default_table ? std::string() : A.table);
   h("integrator.initial_step", A.initial_step)("integrator.fixed_step", A.fixed_step);
-  h.list("output.times", output.times);
-  for (const NamedPoint& p : output.watch) h("output.watch.name", p.name).list("output.watch.point", p.point);
-  for (const NamedPoint& p : output.probes) h("output.probes.name", p.name).list("output.probes.point", p.point);
-  return h.hex();
+  h.list("output.times", c.output.times);
+  for (const NamedPoint& p : c.output.watch) h("output.watch.name", p.name).list("output.watch.point", p.point);
+  for (const NamedPoint& p : c.output.probes) h("output.probes.name", p.name).list("output.probes.point", p.point);
+  return h;
+}
+
+}  // namespace
+
+std::string Config::fingerprint() const { return hash_settings(*this).hex(); }
+
+std::string Config::fingerprint_parts() const { return hash_settings(*this).parts(); }
+
+std::string differing_settings(const std::string& parts, const std::string& other) {
+  if (parts.empty() || other.empty()) return "";
+  const auto by_name = [](const std::string& text) {
+    std::map<std::string, std::string> digest;
+    std::size_t begin = 0;
+    while (begin < text.size()) {
+      const std::size_t end = std::min(text.find(' ', begin), text.size()), eq = text.find('=', begin);
+      if (eq < end) digest[text.substr(begin, eq - begin)] = text.substr(eq + 1, end - eq - 1);
+      begin = end + 1;
+    }
+    return digest;
+  };
+  std::map<std::string, std::string> a = by_name(parts), b = by_name(other);
+  std::vector<std::string> names;
+  for (const auto& [name, digest] : a)
+    if (b[name] != digest) names.push_back(name);
+  for (const auto& [name, digest] : b)
+    if (a.count(name) == 0) names.push_back(name);
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list.empty() ? "" : list + (names.size() == 1 ? " differs" : " differ");
 }
 
 std::string Config::controls_fingerprint() const {

@@ -17,8 +17,10 @@ namespace {
 
 // 2: no step records (history.csv holds them); 3: contact_nodes; 4: the settings fingerprint
 // without the numerical controls (a failed run restarts with them changed); 5: the springs' beta
-// and the condensation counts; 6: the notes the run has said (RunNotes)
-const char* const magic = "rccm-checkpoint-6";
+// and the condensation counts; 6: the notes the run has said (RunNotes); 7: the settings' digests
+// after the fingerprint (a refused restart names what differs; format 6 is read too)
+const char* const magic = "rccm-checkpoint-7";
+const char* const magic_6 = "rccm-checkpoint-6";
 
 /// One record per line: a name, then numbers (hex floats) or, for `text`, the rest of the line.
 class RecordWriter {
@@ -123,7 +125,7 @@ void write_checkpoint(const std::string& directory, const Checkpoint& c) {
   RecordWriter w(file.stream());
   const RunResult& p = c.progress;
   w.text(magic, "");
-  w.text("settings", c.settings);
+  w.text("settings", c.settings + (c.settings_parts.empty() ? "" : " " + c.settings_parts));
   w.number("step", c.step);
   w.number("last_step", c.last_step);
   w.number("t", c.state.t);
@@ -170,7 +172,7 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
     throw InputError(path + ": no checkpoint to restart from (a run writes one every output.checkpoint_steps "
                             "steps and when it stops)");
   std::string format;  // a checkpoint of another version of rccm is not damaged: say so
-  if ((in >> format) && format.rfind("rccm-checkpoint-", 0) == 0 && format != magic)
+  if ((in >> format) && format.rfind("rccm-checkpoint-", 0) == 0 && format != magic && format != magic_6)
     throw InputError(path + ": written by another version of rccm (format " + format + ", this version reads " + magic +
                      "); start the run afresh with --force");
   in.clear();
@@ -178,12 +180,17 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
   RecordReader r(in, path);
   const auto finite = [](const Eigen::VectorXd& v) { return v.allFinite(); };
   Checkpoint c;
-  r.text(magic);
-  c.settings = r.text("settings");
-  if (c.settings != cfg.settings)
-    throw InputError(path + ": written by a run of other settings than " + cfg.file +
-                     " with these --set options (the mesh file's contents count too: an edited or remeshed .geo/.msh is "
-                     "another problem); restart with the same config, options and mesh, or run afresh with --force");
+  r.text(format == magic_6 ? magic_6 : magic);
+  const std::string settings = r.text("settings");
+  c.settings = settings.substr(0, settings.find(' '));
+  c.settings_parts = settings.size() > c.settings.size() ? settings.substr(c.settings.size() + 1) : "";
+  if (c.settings != cfg.settings) {
+    const std::string names = differing_settings(c.settings_parts, cfg.settings_parts);
+    throw InputError(path + ": written by a run of other settings than " + cfg.file + " with these --set options" +
+                     (names.empty() ? "" : ": " + names) +
+                     " (the mesh file's contents count too: an edited or remeshed .geo/.msh is another problem); restart "
+                     "with the same config, options and mesh, or run afresh with --force");
+  }
   c.step = static_cast<int>(r.count("step", 2e9));
   c.last_step = r.number("last_step");
   r.check(std::isfinite(c.last_step) && c.last_step >= 0 && c.last_step <= cfg.time.T,

@@ -893,6 +893,7 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
     Config c = read(reader, cfg.getRoot(), path);
     record_lines(cfg.getRoot(), "", c.lines);
     c.settings = c.fingerprint();
+    c.settings_parts = c.fingerprint_parts();
     return c;
   } catch (const libconfig::SettingException& e) {
     throw InputError(path + ": " + e.getPath() + ": " + e.what());

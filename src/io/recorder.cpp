@@ -214,7 +214,7 @@ void Recorder::say_note(const std::string& text, const char* lead) const {
 }
 
 void Recorder::save_checkpoint() {
-  Checkpoint c{cfg_.settings,           ode_->steps(),              integrator_->last_step(), ode_->committed(),
+  Checkpoint c{cfg_.settings,           cfg_.settings_parts,        ode_->steps(),              integrator_->last_step(), ode_->committed(),
                energy_->terms(),        integrator_->diagnostics(), ode_->excursion(),        {}, {},
                model_->springs_beta(),  notes_};
   c.progress.snapshots = result_.snapshots;

@@ -164,6 +164,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"stopped", r.stopped},
                        {"warnings", r.warnings},
                        {"settings", cfg.fingerprint()},
+                       {"settings_parts", cfg.fingerprint_parts()},
                        {"controls", cfg.controls_fingerprint()}};
   // Numbers to 17 significant digits (nlohmann writes the shortest exact form), strings escaped.
   out << report.dump(2) << "\n";
@@ -175,9 +176,11 @@ ReportedRun read_report_json(const std::string& directory, const Config& cfg) {
   const nlohmann::json report = nlohmann::json::parse(in, nullptr, false);
   if (!in || report.is_discarded() || !report.is_object())
     throw InputError(path + ": cannot be read as the report of a run (damaged?)");
-  if (report.value("settings", std::string()) != cfg.fingerprint())
-    throw InputError(path + ": a run of other settings than " + cfg.file +
-                     " with this case's --set (or of another mesh file, or written by another version of rccm)");
+  if (report.value("settings", std::string()) != cfg.fingerprint()) {
+    const std::string names = differing_settings(report.value("settings_parts", std::string()), cfg.fingerprint_parts());
+    throw InputError(path + ": a run of other settings than " + cfg.file + " with this case's --set" +
+                     (names.empty() ? " (or of another mesh file, or written by another version of rccm)" : " (" + names + ")"));
+  }
   try {
     if (!report.at("complete").get<bool>())
       throw InputError(path + ": the report of a run that did not complete, beside a report.txt that says it did (a "

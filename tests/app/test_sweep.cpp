@@ -231,7 +231,8 @@ TEST_CASE("a resumed sweep keeps its complete cases and restarts its stopped one
   // A sweep of other settings into that directory is refused before anything runs.
   std::vector<SweepCase> other = make_sweep_cases(b1, {"integrator.method=euler", "time.steps=301"}, axes, parts.string());
   CHECK_THROWS_WITH(plan_resumed_sweep(other),
-                    Catch::Contains("sweep --restart: case alpha=1: ") && Catch::Contains("a run of other settings"));
+                    Catch::Contains("sweep --restart: case alpha=1: ") && Catch::Contains("a run of other settings") &&
+                        Catch::Contains("(time.steps differs)"));
   CHECK(test::read_text((parts / "alpha=1" / "history.csv").string()) == kept);
 
   // Other numerical controls (a restart may change them): the complete case is kept, and said so.

@@ -315,6 +315,7 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
 
   Checkpoint c;
   c.settings = cfg.settings;
+  c.settings_parts = cfg.settings_parts;
   c.state.beta = Eigen::VectorXd::Ones(2);
   c.state.Rbar = c.state.u = c.state.y = Eigen::VectorXd::Zero(4);
   c.state.status.assign(2, Status::Separated);
@@ -323,8 +324,9 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   c.progress.peak_force = c.progress.peak_time = {0.0};
   write_checkpoint(dir, c);
   CHECK(message(cfg) == "no error");
-  // Another alpha is another run; the output directory and checkpoint interval are not.
-  CHECK_THAT(message(b1(dir, {"interface.alpha=2.0"})), Catch::Contains("written by a run of other settings"));
+  // Another alpha is another run, named; the output directory and checkpoint interval are not.
+  CHECK_THAT(message(b1(dir, {"interface.alpha=2.0"})),
+             Catch::Contains("written by a run of other settings than ") && Catch::Contains("--set options: interface.alpha differs ("));
   CHECK(message(b1(dir, {"output.checkpoint_steps=7"})) == "no error");
 
   // A checkpoint cut short (a full disk when it was copied): the line that is wrong is named.
@@ -340,7 +342,15 @@ TEST_CASE("a missing, damaged or foreign checkpoint is refused, naming the file"
   // A checkpoint of an earlier version (format 2: no contact_nodes) is not called damaged.
   std::ofstream(checkpoint_path(dir)) << "rccm-checkpoint-2" << text.substr(text.find('\n'));
   CHECK_THAT(message(cfg), Catch::Contains("checkpoint.txt: written by another version of rccm (format rccm-checkpoint-2, "
-                                           "this version reads rccm-checkpoint-6)"));
+                                           "this version reads rccm-checkpoint-7)"));
+  // Format 6 (the settings' hash without the digests) is read: a restart of it goes on, one of
+  // other settings is refused without naming them.
+  std::ofstream(checkpoint_path(dir)) << "rccm-checkpoint-6\nsettings " << cfg.settings
+                                      << text.substr(text.find('\n', text.find("\nsettings ") + 1));
+  CHECK(message(cfg) == "no error");
+  const std::string refused = message(b1(dir, {"interface.alpha=2.0"}));
+  CHECK_THAT(refused, Catch::Contains("written by a run of other settings"));
+  CHECK_THAT(refused, !Catch::Contains("differs"));
   fs::remove_all(dir);
 }
 
@@ -432,21 +442,36 @@ output = { directory = "b"; checkpoint_steps = 7; };
   CHECK(test::config_from_text(crlf(base)).settings == fp);
   CHECK(test::config_from_text(base, {"integrator.table=ARKODE_ARK436L2SA_DIRK_6_3_4"}).settings == fp);  // the default
   // Each setting that shapes the results changes it.
-  for (const char* change :
-       {"mesh.origin=[1.0,0.0]", "mesh.size=[10.0,6.0]", "mesh.nx=5", "mesh.ny=3", "mesh.element=Q4", "mesh.rotation=1.0",
-        "mesh.node_sets=({name=\"p\";box=[0.0,0.0,5.0,5.0];})", "material.E=7e4", "material.nu=0.25",
-        "material.hypothesis=plane_stress", "interface.normal=[0.1,1.0]", "interface.Cn=51.0", "interface.Ct=31.0",
-        "interface.w=0.02", "interface.alpha=2.0", "interface.mu=0.2", "interface.beta0=0.9", "interface.g0=0.1",
-        "loads.[0].value=0.2", "loads.[0].component=x", "loads.[0].node_set=top_right",
-        "loads.[0].type=force", "time.T=2.0", "time.steps=100",
-        "solver.local_iterations=9", "solver.rho=paper",
-        "solver.active_set=false", "solver.active_set_max_nodes=7", "integrator.method=euler", "integrator.scheme=erk",
-        "integrator.table=ARKODE_SDIRK_5_3_4", "integrator.initial_step=0.01", "integrator.fixed_step=0.01",
-        "output.times=[0.5]", "output.watch=({name=\"B\";point=[0.0,0.0];})",
-        "output.probes=({name=\"A\";point=[0.0,5.0];})"}) {
+  // Each setting that shapes the results changes it, and a refused restart names it (the
+  // setting as written where the hash's name is another: loads.type, not loads.kind).
+  const std::string parts = test::config_from_text(base).settings_parts;
+  const std::vector<std::pair<const char*, const char*>> changes{
+      {"mesh.origin=[1.0,0.0]", "mesh.origin"}, {"mesh.size=[10.0,6.0]", "mesh.size"}, {"mesh.nx=5", "mesh.nx"},
+      {"mesh.ny=3", "mesh.ny"}, {"mesh.element=Q4", "mesh.element"}, {"mesh.rotation=1.0", "mesh.rotation"},
+      {"mesh.node_sets=({name=\"p\";box=[0.0,0.0,5.0,5.0];})", "mesh.node_sets"}, {"material.E=7e4", "material.E"},
+      {"material.nu=0.25", "material.nu"}, {"material.hypothesis=plane_stress", "material.hypothesis"},
+      {"interface.normal=[0.1,1.0]", "interface.normal"}, {"interface.Cn=51.0", "interface.Cn"},
+      {"interface.Ct=31.0", "interface.Ct"}, {"interface.w=0.02", "interface.w"}, {"interface.alpha=2.0", "interface.alpha"},
+      {"interface.mu=0.2", "interface.mu"}, {"interface.beta0=0.9", "interface.beta0"}, {"interface.g0=0.1", "interface.g0"},
+      {"loads.[0].value=0.2", "loads.value"}, {"loads.[0].component=x", "loads.component"},
+      {"loads.[0].node_set=top_right", "loads.node_set"}, {"loads.[0].type=force", "loads.type"}, {"time.T=2.0", "loads.value, time.T"},
+      {"time.steps=100", "time.steps"}, {"solver.local_iterations=9", "solver.local_iterations"},
+      {"solver.rho=paper", "solver.rho"}, {"solver.active_set=false", "solver.active_set"},
+      {"solver.active_set_max_nodes=7", "solver.active_set_max_nodes"}, {"integrator.method=euler", "integrator.method"},
+      {"integrator.scheme=erk", "integrator.scheme"}, {"integrator.table=ARKODE_SDIRK_5_3_4", "integrator.table"},
+      {"integrator.initial_step=0.01", "integrator.initial_step"}, {"integrator.fixed_step=0.01", "integrator.fixed_step"},
+      {"output.times=[0.5]", "output.times"}, {"output.watch=({name=\"B\";point=[0.0,0.0];})", "output.watch"},
+      {"output.probes=({name=\"A\";point=[0.0,5.0];})", "output.probes"}};
+  for (const auto& [change, name] : changes) {
     INFO(change);
-    CHECK(test::config_from_text(base, {change}).settings != fp);
+    const Config other = test::config_from_text(base, {change});
+    CHECK(other.settings != fp);
+    const bool several = std::string(name).find(',') != std::string::npos;  // a value's ramp runs over [0, T]
+    CHECK(differing_settings(parts, other.settings_parts) == std::string(name) + (several ? " differ" : " differs"));
   }
+  CHECK(differing_settings(parts, test::config_from_text(base, {"mesh.nx=5", "interface.w=0.02"}).settings_parts) ==
+        "interface.w, mesh.nx differ");
+  CHECK(differing_settings(parts, "").empty());  // a checkpoint of format 6 keeps no digests
   // The numerical controls a failure message asks to change do not: a failed run restarts
   // with them changed.
   for (const char* control :

@@ -200,6 +200,10 @@ struct Config {
   /// however they are written (order, 69000 or 6.9e4, line ends, defaults spelled out).
   std::string settings;
   std::string fingerprint() const;  // a new field goes in there unless it is such a control
+  /// The same values, one digest per setting name ("interface.alpha=1f2e3d4c time.T=..."): a
+  /// restart refused for other settings names them (differing_settings).
+  std::string settings_parts;
+  std::string fingerprint_parts() const;
   /// A hash of those numerical controls alone (report.json: a resumed sweep says which of its
   /// complete cases ran with other controls than the sweep gives now).
   std::string controls_fingerprint() const;
@@ -222,6 +226,11 @@ struct Config {
 const char* method_name(Method m);
 
 /// The config name of a hypothesis ("plane_strain", "plane_stress", "axisymmetric").
+/// The names whose digests differ between two Config::settings_parts, as a phrase
+/// ("interface.alpha differs", "interface.alpha, time.T differ"); empty when either is empty (a
+/// checkpoint or report of an earlier version).
+std::string differing_settings(const std::string& parts, const std::string& other);
+
 const char* hypothesis_name(Hypothesis h);
 
 }  // namespace rccm

@@ -18,6 +18,7 @@ namespace rccm {
 
 struct Checkpoint {
   std::string settings;   // Config::settings of the run that wrote it
+  std::string settings_parts;  // its Config::settings_parts (empty in a checkpoint of format 6)
   int step = 0;           // accepted steps so far
   double last_step = 0;   // s: the integrator's last accepted step size (ARKODE restarts with it)
   InterfaceState state;   // committed: t, beta, Rbar, u, y, status
