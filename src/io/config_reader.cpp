@@ -885,12 +885,41 @@ void record_lines(const Setting& s, const std::string& path, std::map<std::strin
 
 namespace {
 
+/// 0 a number, 1 a string, 2 a boolean, -1 a group, an array or a list.
+int scalar_kind(const Setting& s) {
+  if (s.isNumber()) return 0;
+  if (s.getType() == Setting::TypeString) return 1;
+  return s.getType() == Setting::TypeBoolean ? 2 : -1;
+}
+
+/// A scalar the file gives and a --set (or -o) replaces, as the file wrote it.
+struct Replaced {
+  std::string path, where, type;  // where: "file:line"; type: type_name of the file's value
+  int kind;                       // scalar_kind of the file's value
+};
+
 /// Overrides, then the checked read, of a parsed libconfig tree.
 Config finish(libconfig::Config& cfg, const std::string& path, const std::vector<std::string>& overrides) {
-  for (const std::string& o : overrides) apply_override(cfg, o);
+  std::vector<Replaced> replaced;
+  for (const std::string& o : overrides) {
+    const std::string setting = o.substr(0, o.find('='));
+    if (cfg.exists(setting)) {
+      const Setting& s = cfg.lookup(setting);
+      if (scalar_kind(s) >= 0 && s.getSourceLine() > 0)
+        replaced.push_back({setting, source_path(s.getSourceFile(), path) + ":" + std::to_string(s.getSourceLine()),
+                            type_name(s), scalar_kind(s)});
+    }
+    apply_override(cfg, o);
+  }
   Reader reader(path);
   try {
     Config c = read(reader, cfg.getRoot(), path);
+    // The read took the override's kind of value: one of another kind in the file is wrong
+    // (`directory = 5;` under -o), and would stop the next run without the override.
+    for (const Replaced& r : replaced)
+      if (cfg.exists(r.path) && scalar_kind(cfg.lookup(r.path)) != r.kind)
+        throw InputError(r.where + ": " + r.path + ": must be " + type_name(cfg.lookup(r.path)) + " (got " + r.type +
+                         "); --set or -o replaces it in this run, but the file's value is wrong: mend it");
     record_lines(cfg.getRoot(), "", c.lines);
     c.settings = c.fingerprint();
     c.settings_parts = c.fingerprint_parts();

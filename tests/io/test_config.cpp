@@ -77,6 +77,15 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
   CHECK_THROWS_WITH(test::config_from_text(good, {"loads.[7].value=1"}), Catch::Contains("numbered from 0"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"loads.value=1"}), Catch::Contains("e.g. loads.[0].value"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"time.[0].T=1"}), Catch::Contains("not one"));
+  // A value of the right kind over one of the wrong kind in the file: the file's line is named
+  // (the next run without the override would stop on it); integers and reals are one kind.
+  CHECK(test::config_from_text(good, {"time.T=2"}).time.T == 2.0);
+  CHECK(test::config_from_text(good, {"interface.w=1"}).interfaces[0].w == 1.0);
+  const std::string wrong_directory = std::string(good) + "output = { directory = 5; };\n";
+  CHECK_THROWS_WITH(test::config_from_text(wrong_directory, {"output.directory=\"results\""}),
+                    Catch::Contains(":8: output.directory: must be a string (got an integer); --set or -o replaces it"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"solver.form=5"}),
+                    Catch::Contains("--set solver.form: must be a string (got an integer)"));  // no such setting in the file
 }
 
 TEST_CASE("the exact step is on by default in 2D, off in 3D, and either way when set", "[config]") {
