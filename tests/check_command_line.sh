@@ -3,7 +3,8 @@
 #  1. malformed --set paths and values are bad input (exit 2, the path named; two settings in
 #     one value too, not the first kept and the second dropped), a bare path is a
 #     string, -o DIR writes there (a DIR named like a number or "." too), --restart '' is
-#     refused, a directory as mesh.file is bad input; a doubtful interface warns;
+#     refused, a directory as mesh.file is bad input, a mistyped command is named; a doubtful
+#     interface warns;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too
 #     (its manifest read with CRLF line ends as well);
@@ -84,6 +85,8 @@ check; timeout 10 "$rccm" bench --json "$work" >/dev/null 2>"$work/err"; rc=$?
   || fail "bench --json onto a directory: exit $rc, $(cat "$work/err")"
 check; "$rccm" run "$src/config" >/dev/null 2>"$work/err"; rc=$?
 [ "$rc" -eq 2 ] && grep -q "config: a directory, not a config file" "$work/err" || fail "run DIR: exit $rc, $(cat "$work/err")"
+check; "$rccm" runn "$b1" >/dev/null 2>"$work/err"; rc=$?  # a mistyped command: named, the nearest suggested
+[ "$rc" -eq 2 ] && grep -q "'runn' is not a command; did you mean 'run'?" "$work/err" || fail "rccm runn: exit $rc, $(cat "$work/err")"
 check; "$rccm" --version | grep -Eq '^rccm [0-9]+\.[0-9]+\.[0-9]+$' || fail "rccm --version: $("$rccm" --version)"
 
 # A doubtful interface is run, and said: on stderr and in the report.

@@ -7,6 +7,7 @@
 #include "rccm/app/stop_request.hpp"
 #include "rccm/app/sweep.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/base/suggest.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "rccm/io/output_directory.hpp"
 #include "rccm/la/blas_threads.hpp"
@@ -169,6 +170,16 @@ int main(int argc, char** argv) {
   compare->add_option("--euler-steps", euler_steps, "fixed steps of the euler case (default: time.steps)")
       ->check(CLI::Range(1, 100000000));
 
+  // A mistyped command (`rccm runn`) named, where CLI11 would say only that one is required.
+  if (argc > 1 && argv[1][0] != '-') {
+    std::vector<std::string> commands;
+    for (const CLI::App* sub : app.get_subcommands({})) commands.push_back(sub->get_name());
+    if (std::find(commands.begin(), commands.end(), argv[1]) == commands.end()) {
+      std::cerr << "rccm: error: '" << argv[1] << "' is not a command" << rccm::suggestion(argv[1], commands)
+                << " (rccm --help lists them)\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
