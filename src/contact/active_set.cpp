@@ -19,11 +19,11 @@ Eigen::VectorXd ActiveSetSystem<dim>::constraint_values(const ContactProblem& pb
         for (int k = 0; k < dim; ++k) v[first + k] = Rbar(first + k);
         break;
       case Status::Stick:
-        for (int k = 0; k < dim; ++k) v[first + k] = u[first + k];
+        for (int k = 0; k < dim; ++k) v[first + k] = pattern[i].holds(k) ? Rbar(first + k) : u[first + k];
         break;
       case Status::Slide:
         for (int k = 0; k < dim - 1; ++k) v[first + k] = Rbar(first + k) - pattern[i].direction[k] * pb.mubar[i] * Rbar(n);
-        v[n] = u[n];
+        v[n] = pattern[i].holds(dim - 1) ? Rbar(n) : u[n];
     }
   }
   return v;
@@ -38,8 +38,9 @@ Eigen::VectorXd ActiveSetSystem<dim>::residual(const ContactProblem& pb, const P
     if (pattern[i].status == Status::Separated) continue;
     const Eigen::Index first = Eigen::Index(dim) * i, n = first + dim - 1;
     if (pattern[i].status == Status::Stick)
-      for (int k = 0; k < dim - 1; ++k) r[first + k] += pb.u_ref[first + k];  // no slip
-    r[n] -= pb.g0[i];                                                         // closed gap
+      for (int k = 0; k < dim - 1; ++k)
+        if (!pattern[i].holds(k)) r[first + k] += pb.u_ref[first + k];  // no slip
+    if (!pattern[i].holds(dim - 1)) r[n] -= pb.g0[i];                   // closed gap
   }
   return r;
 }
@@ -53,8 +54,12 @@ void ActiveSetSystem<dim>::mixing(const ContactProblem& pb, const PairRows& kind
     case Status::Separated:  // Rbar = y - E u
       for (int k = 0; k < dim; ++k) Cw(k, k) = -E(k), Cy(k, k) = 1.0;
       break;
-    case Status::Stick:  // u
-      Cw.setIdentity();
+    case Status::Stick:  // u (Rbar where prescribed)
+      for (int k = 0; k < dim; ++k)
+        if (kind.holds(k))
+          Cw(k, k) = -E(k), Cy(k, k) = 1.0;
+        else
+          Cw(k, k) = 1.0;
       break;
     case Status::Slide:  // Rbar_t - s Rbar_n, and u_n
       for (int k = 0; k < dim - 1; ++k) {
@@ -62,7 +67,10 @@ void ActiveSetSystem<dim>::mixing(const ContactProblem& pb, const PairRows& kind
         Cw(k, k) = -E(k), Cw(k, n) = s * E(n);
         Cy(k, k) = 1.0, Cy(k, n) = -s;
       }
-      Cw(n, n) = 1.0;
+      if (kind.holds(n))
+        Cw(n, n) = -E(n), Cy(n, n) = 1.0;
+      else
+        Cw(n, n) = 1.0;
   }
 }
 
@@ -104,7 +112,7 @@ void ActiveSetSystem<dim>::record(const ContactProblem& pb, const Pattern& patte
 
 template <int dim>
 bool ActiveSetSystem<dim>::rows_moved(const ContactProblem& pb, const PairRows& kind, int i) const {
-  if (kind.status == Status::Stick) return false;  // u rows: no beta in them
+  if (kind.status == Status::Stick) return false;  // u rows (Rbar_k = y_k where held): no beta in them
   const Eigen::Index first = Eigen::Index(dim) * i;
   bool spring = false;
   for (int k = 0; k < dim; ++k) {

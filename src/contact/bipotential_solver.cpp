@@ -23,6 +23,7 @@ Pattern pattern_of(const std::vector<Status>& status, const std::vector<PairBloc
   Pattern p(status.size());
   for (std::size_t i = 0; i < status.size(); ++i) {
     p[i].status = blocks[i].prescribed ? Status::Separated : status[i];
+    p[i].held = blocks[i].held;
     if (p[i].status != Status::Slide) continue;
     const Eigen::Matrix<double, dim, 1> R = pair<dim>(Rbar, int(i));
     const double Rt = tangential_norm(R);

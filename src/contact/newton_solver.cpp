@@ -222,6 +222,7 @@ class NewtonSolver::Iteration {
       Pattern pattern(pb_.size());
       for (int i = 0; i < pb_.size(); ++i) {
         pattern[i].status = cases_[i].status;
+        pattern[i].held = blocks_[i].held;
         if (cases_[i].status == Status::Slide) pattern[i].direction[0] = cases_[i].d[0];
       }
       Eigen::VectorXd y = s.y, u = s.u;

@@ -45,6 +45,9 @@ std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) 
     b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
     const double lmax = largest_eigenvalue(b.Wb);
     b.prescribed = lmax <= tuning::prescribed_pair * scale;
+    b.held = 0;
+    for (int k = 0; k < dim; ++k)
+      if (b.Wii(k, k) <= tuning::prescribed_pair * scale) b.held |= 1u << k;
     if (b.prescribed) {
       b.rho = 0;
     } else if (rule == RhoRule::Eigen) {

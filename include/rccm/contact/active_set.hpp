@@ -3,6 +3,8 @@
 //   separated  Rbar_i = 0,
 //   stick      u_i = (u_ref,t,i, -g0_i),
 //   slide      u_n,i = -g0_i  and  Rbar_t,i = mubar_i Rbar_n,i d_i  (d_i the slide direction),
+// where a component of u_i is prescribed (a support on the contact node: W0's row is zero) its
+// row reads Rbar_k = 0 instead (the law holds for any Rbar_k there; the support carries it),
 // with u = W0 y + q0 and Rbar = y - E u in the unknown y. Its residual and its product
 // with a vector cost one product with W0 each.
 // The system keeps A0, the matrix of an earlier pattern and beta, and its explicit inverse.
@@ -41,8 +43,11 @@ namespace rccm {
 struct PairRows {
   Status status = Status::Separated;
   Eigen::Vector2d direction = Eigen::Vector2d::Zero();
+  unsigned held = 0;  // bit k: component k prescribed (PairBlock::held): its u row reads Rbar_k = 0
+  bool holds(int k) const { return (held >> k) & 1u; }
   bool operator==(const PairRows& o) const {
-    return status == o.status && (status != Status::Slide || (direction - o.direction).norm() <= tuning::slide_direction_drift);
+    return status == o.status && held == o.held &&
+           (status != Status::Slide || (direction - o.direction).norm() <= tuning::slide_direction_drift);
   }
   bool operator!=(const PairRows& o) const { return !(*this == o); }
 };

@@ -35,6 +35,8 @@ struct PairBlock {
   double mubar;     // mu (1 - beta)
   double rho;       // predictor step, N/mm (paper eq. 34, or 1 / lambda_max(Wb))
   bool prescribed;  // every component prescribed: u_i does not depend on Rbar_i, Rbar_i = 0
+  unsigned held;    // bit k: component k prescribed (a support on the contact node): u_i,k does not
+                    // depend on Rbar, which the exact step sets to 0 there (the support carries it)
 
   /// The predictor of paper eq. 35 at local displacement u_i: tau = R - rho s(u_i).
   Vec predictor(const Vec& R, const Vec& u_i) const { return R - rho * modified_velocity(u_i + shift, mubar); }
