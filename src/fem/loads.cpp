@@ -6,9 +6,11 @@
 
 namespace rccm {
 
-std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
+std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const std::vector<int>& axis) {
   const int ndof = mesh.num_dofs();
+  constexpr int on_axis = -2;  // owner of the axis's u_r = 0
   std::vector<int> owner(ndof, -1);
+  for (int dof : axis) owner[dof] = on_axis;
   std::vector<LoadCase> out;
   for (std::size_t k = 0; k < cfg.loads.size(); ++k) {
     const LoadParams& p = cfg.loads[k];
@@ -30,7 +32,13 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
       for (int n : *set) lc.dofs.push_back(mesh.dof(n, p.component)), lc.along.push_back(1.0);
     }
     if (p.kind == LoadKind::Displacement) {
+      const bool zero = std::all_of(p.amplitude.v.begin(), p.amplitude.v.end(), [](double v) { return v == 0.0; });
       for (int dof : lc.dofs) {
+        if (owner[dof] == on_axis && zero) continue;  // u_r = 0 again: the axis holds it already
+        if (owner[dof] == on_axis)
+          throw InputError(where + "node " + std::to_string(dof / mesh.dim) +
+                           " lies on the axis (r = 0), where an axisymmetric model holds u_r = 0: a radial displacement "
+                           "there would open a hole at the axis; start the node set's box at r > 0, or prescribe y only");
         if (owner[dof] >= 0)
           throw InputError(where + "node " + std::to_string(dof / mesh.dim) + " component " + "xyz"[p.component] +
                            " is already prescribed by loads.[" + std::to_string(owner[dof]) + "]");
@@ -68,13 +76,17 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg) {
   for (std::size_t k = 0; k < out.size(); ++k) {
     const LoadParams& p = cfg.loads[k];
     if (p.kind == LoadKind::Displacement) continue;
-    const auto supported = [&](int dof) { return owner[dof] >= 0; };
+    const auto supported = [&](int dof) { return owner[dof] != -1; };
     const auto first = std::find_if(out[k].dofs.begin(), out[k].dofs.end(), supported);
     if (p.kind == LoadKind::Force && first != out[k].dofs.end())
       throw InputError(cfg.where(p.path + ".node_set") + ": node " + std::to_string(*first / mesh.dim) + " component " +
-                       "xyz"[*first % mesh.dim] + " is prescribed by loads.[" + std::to_string(owner[*first]) +
-                       "]: a force there acts on the support, not on the body; load another node set, or drop one of "
-                       "the two loads");
+                       "xyz"[*first % mesh.dim] + " is prescribed by " +
+                       (owner[*first] == on_axis
+                            ? std::string("the axis (r = 0, where an axisymmetric model holds u_r = 0): a force there acts "
+                                          "on the axis, not on the body; start the node set's box at r > 0")
+                            : "loads.[" + std::to_string(owner[*first]) +
+                                  "]: a force there acts on the support, not on the body; load another node set, or drop "
+                                  "one of the two loads"));
     if (std::all_of(out[k].dofs.begin(), out[k].dofs.end(), supported))
       throw InputError(cfg.where(p.path + ".node_set") + ": every node of '" + p.node_set + "' is prescribed along the " +
                        (p.kind == LoadKind::Pressure ? "pressure" : "traction") + ": it would act on the supports only");

@@ -114,10 +114,10 @@ Model::Model(const Config& cfg, Mesh mesh)
                    std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
                    "use a coarser interface mesh, solver.compressed_min_nodes below the contact node count, or "
                    "solver.active_set_max_nodes below it");
-  loads_ = make_load_cases(mesh_, cfg);
+  const std::vector<int> axis = axis_supports(cfg, mesh_, size_);
+  loads_ = make_load_cases(mesh_, cfg, axis);
   supports_ = prescribed_dofs(loads_);
-  for (int d : axis_supports(cfg, mesh_, size_))
-    if (std::find(supports_.begin(), supports_.end(), d) == supports_.end()) supports_.push_back(d);
+  supports_.insert(supports_.end(), axis.begin(), axis.end());
   if (supports_.size() == static_cast<std::size_t>(mesh_.num_dofs()))
     throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
   check_prescribed_gaps(cfg);

@@ -3,6 +3,7 @@
 // pushes along the inward normal of a curved boundary.
 #include "helpers.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/base/errors.hpp"
 #include "rccm/model/body_state.hpp"
 
 #include <catch2/catch.hpp>
@@ -92,4 +93,24 @@ time = { T = 1.0; };
     CHECK(std::abs(f.x() * x.y() - f.y() * x.x()) <= 1e-3 * f.norm() * x.norm());  // radial, to the mesh's polygon
   }
   fs::remove_all(dir);
+}
+
+TEST_CASE("the axis of an axisymmetric mesh holds u_r = 0: a zero radial displacement there is the same run", "[loads]") {
+  const std::string base = R"(
+mesh = { size = [2.0, 4.0]; nx = 2; ny = 4; element = "Q4"; origin = [0.0, 0.0]; };
+material = { E = 1000.0; nu = 0.25; hypothesis = "axisymmetric"; };
+interface = { boundary = "bottom"; Cn = 1.0e4; Ct = 1.0e4; w = 10.0; mu = 0.3; };
+time = { T = 1.0; steps = 4; };
+integrator = { method = "euler"; };
+)";
+  const std::string pull = R"(loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = 0.001; } );)";
+  const std::string held = R"(loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = 0.001; },
+                                          { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; } );)";
+  const RunResult a = Simulation(test::config_from_text(base + pull)).run();
+  const RunResult b = Simulation(test::config_from_text(base + held)).run();
+  REQUIRE(a.snapshots.size() == b.snapshots.size());
+  CHECK(b.snapshots.back().u == a.snapshots.back().u);
+  CHECK(a.snapshots.back().u.cwiseAbs().maxCoeff() > 1e-5);  // the pull reached the interface
+  // A nonzero one, or a force there, is refused (tests/hostile/axisymmetric_*_on_axis.cfg: the messages).
+  CHECK_THROWS_AS(test::make_model(test::config_from_text(base + R"(loads = ( { node_set = "left"; type = "force"; component = "x"; value = 1.0; } );)")), InputError);
 }

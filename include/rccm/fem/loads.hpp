@@ -25,8 +25,10 @@ struct LoadCase {
 };
 
 /// Turns the config's loads into load cases; throws InputError "file:line: loads.[k]..."
-/// for an unknown or empty node set, or a DOF prescribed by two loads.
-std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg);
+/// for an unknown or empty node set, a DOF prescribed by two loads, or a force on a support.
+/// `axis`: the DOFs u_r of an axisymmetric mesh's nodes on the axis, held at 0 by the model:
+/// a force there, or a radial displacement other than 0, is refused as well.
+std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const std::vector<int>& axis = {});
 
 /// All prescribed DOFs of the load cases.
 std::vector<int> prescribed_dofs(const std::vector<LoadCase>& loads);
