@@ -32,12 +32,15 @@ double EnergyTerms::relative_error() const {
 
 EnergyBalance::EnergyBalance(const Model& model, const InterfaceState& initial, const BodyState& initial_body,
                              bool rate_independent)
-    : model_(model),
-      rate_independent_(rate_independent),
-      psi0_(free_energy(initial)),
-      previous_(initial),
-      previous_body_(initial_body) {
+    : model_(model), rate_independent_(rate_independent), previous_(initial), previous_body_(initial_body) {
+  // The free energy from the unloaded interface at beta0 (psi = -w beta0), and the work of loads
+  // already on at t = 0 as what they store reaching that state elastically.
+  InterfaceState unloaded = initial;
+  unloaded.u.setZero();
+  psi0_ = free_energy(unloaded);
   terms_.strain_energy = 0.5 * initial_body.u.dot(model.stiffness() * initial_body.u);
+  terms_.free_energy_change = free_energy(initial) - psi0_;
+  terms_.external_work = terms_.strain_energy + terms_.free_energy_change;
   terms_.round_off = round_off();
 }
 

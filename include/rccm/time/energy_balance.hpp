@@ -16,9 +16,9 @@
 namespace rccm {
 
 struct EnergyTerms {
-  double external_work = 0;         // int f_ext . du, N mm
+  double external_work = 0;         // int f_ext . du, N mm (loads on at t = 0: from the energy they store there)
   double strain_energy = 0;         // 1/2 u^T K u
-  double free_energy_change = 0;    // sum a_i (psi_i(t) - psi_i(0)), psi = 1/2 beta^2 C u^2 - w beta
+  double free_energy_change = 0;    // sum a_i (psi_i(t) - psi_i(beta0, u = 0)), psi = 1/2 beta^2 C u^2 - w beta
   double damage_dissipation = 0;    // sum a_i int G dbeta  (= alpha beta'^2 dt >= 0)
   double friction_dissipation = 0;  // sum -int Rbar_t . du_t >= 0
   double normal_contact_work = 0;   // sum int Rbar_n du_n (0 by Signorini; reported, not balanced)
