@@ -11,7 +11,9 @@
 #  4. a case alpha = 0 is labelled rate-independent, without the integrator it did not use;
 #  5. its energy panel draws, for alpha = 0, the work released in snap-through (dashed);
 #  6. with a support listed before the pull (the sweep's loads), panel (a) draws the pull, the
-#     load whose force is largest, and names it; the sweep's summary.csv reports its peak.
+#     load whose force is largest, and names it; the sweep's summary.csv reports its peak;
+#  7. a support whose force exceeds the pull's (one that carries it back): panel (a) draws the
+#     driven load (a value other than 0) all the same.
 # Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
@@ -165,6 +167,36 @@ print("; ".join(problems))
 sys.exit(1 if problems else 0)
 EOF
 then pass; else fail "the drawn and summarized load"; fi
+
+# 7. A support that carries the pull back (two bodies, a pile in its soil), here its force made
+#    1.5 times the pull's in copies of the cases: panel (a) still draws the driven load.
+if $py - "$plot" "$work/carried" "${cases[@]}" <<'EOF'
+import csv, importlib.machinery, importlib.util, os, shutil, sys
+loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
+plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
+loader.exec_module(plot)
+drawn = {}
+plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+copies = []
+for d in sys.argv[3:]:
+    copy = os.path.join(sys.argv[2], os.path.basename(d))
+    shutil.copytree(d, copy)
+    path = os.path.join(copy, "curves.csv")
+    rows = list(csv.DictReader(open(path)))
+    for r in rows:
+        r["L0 top_right.x force [N]"] = repr(-1.5 * float(r["L1 top_left.y force [N]"]))
+    with open(path, "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    copies.append(copy)
+plot.overlay("/nonexistent-unused", copies)
+force = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(a)")][0]
+ok = "top_left" in force.get_ylabel()
+print("" if ok else f"panel (a)'s force axis is {force.get_ylabel()!r}, not the driven top_left.y")
+sys.exit(0 if ok else 1)
+EOF
+then pass; else fail "a support carrying the pull back drawn instead of the pull"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

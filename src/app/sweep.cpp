@@ -218,15 +218,28 @@ std::string resume_command(const std::string& rccm_path, const std::string& conf
 
 namespace {
 
-/// The load whose force peaks highest over the complete cases, the one the summary reports: a
-/// support listed first may react at round-off only, and its "peak" would read as a result.
+/// The load the summary reports: of the driven loads (a value other than 0 in some case), the
+/// one whose force peaks highest over the complete cases. A support (a displacement held at 0)
+/// may react at round-off only, or carry the driven load's force back (two bodies, a pile in
+/// its soil): its "peak" would read as the result, or tie with it. tools/plot --overlay draws
+/// the same load.
 std::size_t reported_load(const std::vector<SweepCase>& cases) {
+  const auto driven = [&](std::size_t k) {
+    for (const SweepCase& c : cases)
+      if (k < c.config.loads.size())
+        for (double v : c.config.loads[k].amplitude.v)
+          if (v != 0) return true;
+    return false;
+  };
+  bool any_driven = false;
+  for (std::size_t k = 0; k < cases.front().config.loads.size(); ++k) any_driven = any_driven || driven(k);
   std::size_t load = 0;
   double largest = -1;
   for (const SweepCase& c : cases)
     if (c.status == CaseStatus::Complete)
       for (std::size_t k = 0; k < c.result.peak_force.size(); ++k)
-        if (std::abs(c.result.peak_force[k]) > largest) largest = std::abs(c.result.peak_force[k]), load = k;
+        if ((!any_driven || driven(k)) && std::abs(c.result.peak_force[k]) > largest)
+          largest = std::abs(c.result.peak_force[k]), load = k;
   return load;
 }
 

@@ -120,6 +120,37 @@ TEST_CASE("a sweep whose output times end at T: one column for T, each cell the 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a sweep reports the driven load's peak, not a support's that carries it back", "[sweep]") {
+  // Two glued bodies, the base held and the top pulled: the base's reaction is the pull's force
+  // (and by round-off may exceed it); a support listed first may also react harder than the
+  // pull. The summary names the driven load, a displacement other than 0 (tools/plot's overlay
+  // the same: tests/check_overlay.sh).
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_driven";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<SweepAxis> axes = {{"interface.alpha", {"1", "10"}}};
+  std::vector<SweepCase> cases = make_sweep_cases(
+      b1, {"loads=({node_set=\"top_right\";type=\"displacement\";component=\"x\";value=0.0;},"
+           "{node_set=\"top_left\";type=\"displacement\";component=\"y\";value=0.3;})"},
+      axes, dir.string());
+  for (SweepCase& c : cases) {
+    c.status = CaseStatus::Complete;
+    c.result.peak_force = {-700.0 - c.values[0].size(), 650.0};  // the support above the pull
+    c.result.peak_time = {4.0, 5.0};
+  }
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), axes, cases);
+  const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
+  CHECK(summary.header.at(3) == "peak force L1 top_left.y [N]");
+  CHECK(summary.rows.at(0).at(3) == "650");
+  CHECK(summary.rows.at(1).at(4) == "5");
+  // Nothing driven (every load held at 0): the largest force, as before.
+  for (SweepCase& c : cases) c.config.loads[1].amplitude.v.assign(c.config.loads[1].amplitude.v.size(), 0.0);
+  write_sweep_summary(table, dir.string(), axes, cases);
+  CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L0 top_right.x [N]");
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a sweep's complete case that warned says so in its row", "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_warning";
   fs::remove_all(dir);
