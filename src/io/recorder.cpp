@@ -74,7 +74,7 @@ void Recorder::open(const Model& model) {
   // Doubtful geometry said before the first step: a user can stop a long run at once, and a
   // run that fails has said it (the report's warnings repeat it at the end).
   if (options_.write_files)
-    for (const std::string& note : model.interface().notes) say_note(note);
+    for (const std::string& note : model.notes()) say_note(note);
   if (options_.step_log)
     *options_.step_log << "# " << cfg_.file << ": " << result_.nodes << " nodes, " << result_.cells << " cells, "
                        << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)
@@ -268,7 +268,7 @@ RunResult Recorder::close(const std::string& stopped) {
   result_.integrator.steps = ode_->steps();
   result_.solves = ode_->totals();
   result_.energy = energy_->terms();
-  result_.warnings = model_->interface().notes;
+  result_.warnings = model_->notes();
   for (const std::string& w : integrator_->warnings()) result_.warnings.push_back(w);
   result_.warnings.insert(result_.warnings.end(), notes_.said.begin(), notes_.said.end());
   for (const std::string& w : ode_->warnings()) result_.warnings.push_back(w);

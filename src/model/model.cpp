@@ -121,6 +121,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   if (supports_.size() == static_cast<std::size_t>(mesh_.num_dofs()))
     throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
   check_prescribed_gaps(cfg);
+  notes_ = interface_.notes;
+  note_tables_past_T(cfg);
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);
   if (!compress_W0_)
@@ -171,6 +173,18 @@ bool Model::springs_lag(const Eigen::VectorXd& beta) const {
   for (int i = 0; i < interface_.size(); ++i)
     lagging += springs_weight(beta[i]) * tuning::springs_lag_ratio < springs_weight(springs_beta_[i]);
   return lagging > 0 && lagging >= tuning::springs_lag_fraction * interface_.size();
+}
+
+void Model::note_tables_past_T(const Config& cfg) {
+  for (const LoadParams& p : cfg.loads) {
+    const TimeFunction& f = p.amplitude;
+    if (f.t.size() < 2 || f.t.back() <= cfg.time.T * (1 + 1e-12)) continue;  // a ramp (value) ends at T
+    std::ostringstream m;
+    m << cfg.where(p.path + ".table") << ": its times go to " << f.t.back() << " s, past time.T = " << cfg.time.T
+      << " s: the run applies it up to T only (" << f(cfg.time.T) << " at T, " << f.v.back()
+      << " at its end); times are in s";
+    notes_.push_back(m.str());
+  }
 }
 
 void Model::check_prescribed_gaps(const Config& cfg) const {

@@ -114,3 +114,20 @@ integrator = { method = "euler"; };
   // A nonzero one, or a force there, is refused (tests/hostile/axisymmetric_*_on_axis.cfg: the messages).
   CHECK_THROWS_AS(test::make_model(test::config_from_text(base + R"(loads = ( { node_set = "left"; type = "force"; component = "x"; value = 1.0; } );)")), InputError);
 }
+
+TEST_CASE("a load table past time.T (times in ms) is noted with what the run applies at T", "[loads]") {
+  const std::string base = R"(
+mesh = { size = [10.0, 2.0]; nx = 4; ny = 1; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 1.0e4; Ct = 1.0e4; w = 10.0; mu = 0.3; };
+time = { T = 4.0; };
+)";
+  const Model ms = test::make_model(test::config_from_text(
+      base + R"(loads = ( { node_set = "top"; type = "displacement"; component = "y"; table = ((0.0, 0.0), (2000.0, 0.5), (4000.0, 2.0)); } );)"));
+  REQUIRE(ms.notes().size() == 1);
+  CHECK_THAT(ms.notes()[0], Catch::Contains(":6: loads.[0].table: its times go to 4000 s, past time.T = 4 s: the run "
+                                            "applies it up to T only (0.001 at T, 2 at its end)"));
+  const Model s = test::make_model(test::config_from_text(
+      base + R"(loads = ( { node_set = "top"; type = "displacement"; component = "y"; table = ((0.0, 0.0), (4.0, 0.5)); } );)"));
+  CHECK(s.notes().empty());
+}

@@ -32,6 +32,9 @@ class Model {
   /// The material of each body of the mesh (Mesh::body_names).
   const std::vector<Material>& materials() const { return materials_; }
   const Interface& interface() const { return interface_; }
+  /// Doubtful input said before the first step and kept as the run's warnings: the
+  /// interface's geometry (Interface::notes), a load table that goes past time.T.
+  const std::vector<std::string>& notes() const { return notes_; }
   const Condensation& condensation() const { return *condensation_; }
   int contact_nodes() const { return interface_.size(); }
   /// Contact node i in a message, findable in the results: "contact node i (mesh node n at
@@ -76,11 +79,14 @@ class Model {
   void check_restrained(const Config& cfg) const;
   /// Throws InputError when a prescribed displacement presses a contact node into the foundation.
   void check_prescribed_gaps(const Config& cfg) const;
+  /// A load table with points past time.T (given in ms, or a long table run short): noted.
+  void note_tables_past_T(const Config& cfg);
 
   Mesh mesh_;
   std::vector<Material> materials_;
   double size_ = 0;
   Interface interface_;
+  std::vector<std::string> notes_;
   std::vector<LoadCase> loads_;
   std::vector<int> supports_;
   SparseMatrix K_;
