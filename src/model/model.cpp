@@ -39,6 +39,23 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         << distance(best) << " mm from the nearest " << what;
       throw InputError(m.str());
     }
+    // Two nodes at that point (two bodies glued there, each with its own nodes): which one the
+    // point means is the user's to say.
+    for (std::size_t j = 0; j < candidates.size(); ++j)
+      if (j != best && (mesh.nodes[candidates[j]] - mesh.nodes[candidates[best]]).norm() <= 1e-9 * reach) {
+        const auto body = [&](int node) {
+          for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+            if (std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end())
+              return "body '" + mesh.body_names[mesh.cell_body[c]] + "'";
+          return std::string("no body");
+        };
+        std::ostringstream m;
+        m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
+          << point(given, mesh.dim) << " is as near to mesh node " << candidates[best] << " of " << body(candidates[best])
+          << " as to mesh node " << candidates[j] << " of " << body(candidates[j])
+          << " (they share that point); move the point a little into the body you mean";
+        throw InputError(m.str());
+      }
     out.push_back(static_cast<int>(best));
   }
   return out;
