@@ -169,7 +169,8 @@ std::string Config::controls_fingerprint() const {
 
 std::string Config::where(const std::string& path) const {
   const auto it = lines.find(path);
-  if (it == lines.end() || it->second == 0) return file + ": " + path;
+  if (it == lines.end()) return file + ": " + path;  // a default, or a setting read before the lines were kept
+  if (it->second == 0) return "--set " + path;      // given on the command line (or by -o)
   return file + ":" + std::to_string(it->second) + ": " + path;
 }
 

@@ -77,6 +77,9 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
   CHECK_THROWS_WITH(test::config_from_text(good, {"loads.[7].value=1"}), Catch::Contains("numbered from 0"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"loads.value=1"}), Catch::Contains("e.g. loads.[0].value"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"time.[0].T=1"}), Catch::Contains("not one"));
+  // Found wrong once the mesh is known: named as the --set that gave it, not as the file.
+  CHECK_THROWS_WITH(test::make_model(test::config_from_text(good, {"loads.[0].node_set=\"nowhere\""})),
+                    Catch::StartsWith("--set loads.[0].node_set: no node set named 'nowhere'"));
   // A value of the right kind over one of the wrong kind in the file: the file's line is named
   // (the next run without the override would stop on it); integers and reals are one kind.
   CHECK(test::config_from_text(good, {"time.T=2"}).time.T == 2.0);

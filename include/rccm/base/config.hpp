@@ -209,7 +209,8 @@ struct Config {
   std::string controls_fingerprint() const;
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
-  /// the wrong length once the mesh is known, an unwritable directory).
+  /// the wrong length once the mesh is known, an unwritable directory); "--set path" for one
+  /// given on the command line.
   std::string where(const std::string& path) const;
 
   MeshParams mesh;
