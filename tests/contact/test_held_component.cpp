@@ -5,17 +5,21 @@
 // bipotential, Newton and rccm runs agree, the solves take a few sweeps (before: 14 per solve
 // and up to 42 with ARKODE; the rate-independent limit stalled at its second step).
 #include "helpers.hpp"
+#include "random_problem.hpp"
 #include "rccm/app/simulation.hpp"
+#include "rccm/contact/bipotential_solver.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "rccm/model/model.hpp"
 
 #include <catch2/catch.hpp>
 
 #include <cmath>
+#include <random>
 #include <string>
 #include <vector>
 
 using namespace rccm;
+using namespace rccm::testing;
 
 namespace {
 
@@ -70,4 +74,49 @@ TEST_CASE("a support on a contact node: the exact step takes its prescribed slip
   const RunResult limit = run_b1_held("bipotential", {"interface.alpha=0"});
   CHECK(limit.stopped.empty());
   CHECK(limit.solves.max_sweeps <= 6);
+}
+
+TEST_CASE("the exact step on a pair with a prescribed slip: Rbar_t = 0 there, the law and equilibrium elsewhere",
+          "[held]") {
+  // Random problems whose pair 2 has its tangential row and column of W0 zero (a support
+  // holds its slip at u_ref,t = 0.07 mm since the last step). Warm-started from the solution
+  // before a drift of the loads, with Rbar_t = 0.01 there, the exact step must set it to 0 (its row Rbar_t = 0, right-hand side 0) and leave
+  // the other pairs as plain sweeps find them.
+  std::mt19937 gen(5);
+  int stuck = 0;  // trials where pair 2 sticks under pressure: the held row at work
+  for (int trial = 0; trial < 20; ++trial) {
+    RandomProblem rp(6, 2, Family::Mild, true, gen);
+    const Eigen::Index c = rp.pb.layout.offset(2);
+    Eigen::MatrixXd W = rp.matrix();
+    W.row(c).setZero();
+    W.col(c).setZero();
+    rp.W = DenseDelassus(W);
+    rp.pb.q0[c] = rp.pb.u_ref[c] = 0.07;
+    SolverParams exact;
+    exact.tolerance = 1e-10;
+    exact.max_iterations = 20000;
+    SolverParams plain = exact;
+    plain.active_set = false;
+    plain.anderson = 0;
+    const ContactSolution previous = BipotentialSolver(plain).solve(rp.pb, {}, {});
+    REQUIRE(previous.converged);
+    drift(rp.pb, 0.5, gen);  // the next stage's problem: the warm start is no longer its solution
+    rp.pb.q0[c] = 0.07;
+    const ContactSolution reference = BipotentialSolver(plain).solve(rp.pb, {}, {});
+    REQUIRE(reference.converged);
+    Eigen::VectorXd start = previous.Rbar;
+    start[c] = 0.01;
+    const ContactSolution s = BipotentialSolver(exact).solve(rp.pb, start, previous.u);
+    INFO("trial " << trial << ": pair 2 " << int(s.status[2]) << ", Rbar " << s.Rbar.segment<2>(c).transpose());
+    REQUIRE(s.converged);
+    require_solution(rp.pb, s);
+    CHECK(s.u[c] == 0.07);
+    if (s.status[2] != Status::Stick) continue;
+    ++stuck;
+    CHECK(std::abs(s.Rbar[c]) <= 1e-12);
+    Eigen::VectorXd d = s.Rbar - reference.Rbar;
+    d[c] = 0.0;
+    CHECK(d.norm() <= 1e-8 * (1 + reference.Rbar.norm()));
+  }
+  CHECK(stuck >= 3);
 }
