@@ -144,10 +144,13 @@ TEST_CASE("a sweep reports the driven load's peak, not a support's that carries 
   CHECK(summary.header.at(3) == "peak force L1 top_left.y [N]");
   CHECK(summary.rows.at(0).at(3) == "650");
   CHECK(summary.rows.at(1).at(4) == "5");
-  // Nothing driven (every load held at 0): the largest force, as before.
-  for (SweepCase& c : cases) c.config.loads[1].amplitude.v.assign(c.config.loads[1].amplitude.v.size(), 0.0);
+  // Nothing driven (every load held at 0): the largest force, as before (here the second load's).
+  for (SweepCase& c : cases) {
+    c.config.loads[1].amplitude.v.assign(c.config.loads[1].amplitude.v.size(), 0.0);
+    c.result.peak_force = {-100.0, 650.0};
+  }
   write_sweep_summary(table, dir.string(), axes, cases);
-  CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L0 top_right.x [N]");
+  CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L1 top_left.y [N]");
   fs::remove_all(dir);
 }
 
