@@ -21,6 +21,16 @@ py=/usr/bin/python3
 $py -c "import matplotlib" 2>/dev/null || { echo "skipped: python3-matplotlib is not installed"; exit 77; }
 work=$(mktemp -d); trap 'rm -rf "$work"' EXIT
 passed=0; failed=0
+# tools/plot as a module for the checks below (`from plot_module import plot, drawn`): its
+# figures kept in `drawn` instead of saved. The path of tools/plot is each script's argv[1].
+cat > "$work/plot_module.py" <<'EOF'
+import importlib.machinery, importlib.util, sys
+loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
+plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
+loader.exec_module(plot)
+drawn = {}
+plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+EOF
 pass() { passed=$((passed + 1)); }
 fail() { echo "FAIL $*"; failed=$((failed + 1)); }
 
@@ -92,11 +102,9 @@ refused --overlay "${cases[0]}" "${cases[@]}"
 [ -e "${cases[0]}/overlay.png" ] && fail "overlay.png written into a run's directory" || pass
 
 # 4. Legends: alpha = 0 is the rate-independent limit whatever integrator.method says.
-if $py - "$plot" <<'EOF'
-import importlib.machinery, importlib.util, sys
-loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
-plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
-loader.exec_module(plot)
+if PYTHONPATH="$work" $py - "$plot" <<'EOF'
+import sys
+from plot_module import plot
 zero, one = plot.case_label("method=arkode_alpha=0"), plot.case_label("method=euler_alpha=1")
 solver = plot.case_label("method=rccm_alpha=0")  # solver.method: still counts at alpha = 0
 ok = "rate-independent" in zero and "arkode" not in zero and "euler" in one and "rate-independent" not in one
@@ -108,13 +116,9 @@ then pass; else fail "case labels"; fi
 
 # 5. Panel (d): the rate-independent case's energy is the work released in its snap-throughs
 #    (curves.csv's imbalance), dashed, named in the title; the viscous cases' is the damage's.
-if $py - "$plot" "${cases[@]}" <<'EOF'
-import csv, importlib.machinery, importlib.util, json, os, sys
-loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
-plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
-loader.exec_module(plot)
-drawn = {}
-plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+if PYTHONPATH="$work" $py - "$plot" "${cases[@]}" <<'EOF'
+import csv, json, os, sys
+from plot_module import plot, drawn
 plot.overlay("/nonexistent-unused", sys.argv[2:])
 energy = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(d)")][0]
 problems = []
@@ -134,13 +138,9 @@ EOF
 then pass; else fail "panel (d)"; fi
 
 # 6. The load with the largest force, not the first: in panel (a) and in summary.csv.
-if $py - "$plot" "$sweep" "${cases[@]}" <<'EOF'
-import csv, importlib.machinery, importlib.util, os, sys
-loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
-plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
-loader.exec_module(plot)
-drawn = {}
-plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+if PYTHONPATH="$work" $py - "$plot" "$sweep" "${cases[@]}" <<'EOF'
+import csv, os, sys
+from plot_module import plot, drawn
 sweep, cases = sys.argv[2], sys.argv[3:]
 plot.overlay("/nonexistent-unused", cases)
 force = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(a)")][0]
@@ -170,13 +170,9 @@ then pass; else fail "the drawn and summarized load"; fi
 
 # 7. A support that carries the pull back (two bodies, a pile in its soil), here its force made
 #    1.5 times the pull's in copies of the cases: panel (a) still draws the driven load.
-if $py - "$plot" "$work/carried" "${cases[@]}" <<'EOF'
-import csv, importlib.machinery, importlib.util, os, shutil, sys
-loader = importlib.machinery.SourceFileLoader("rccm_plot", sys.argv[1])
-plot = importlib.util.module_from_spec(importlib.util.spec_from_loader("rccm_plot", loader))
-loader.exec_module(plot)
-drawn = {}
-plot.save = lambda fig, out_dir, name: drawn.update(fig=fig)
+if PYTHONPATH="$work" $py - "$plot" "$work/carried" "${cases[@]}" <<'EOF'
+import csv, os, shutil, sys
+from plot_module import plot, drawn
 copies = []
 for d in sys.argv[3:]:
     copy = os.path.join(sys.argv[2], os.path.basename(d))
