@@ -193,4 +193,59 @@ const char* method_name(Method m) {
   return "";
 }
 
+const char* contact_method_name(ContactMethod m) {
+  switch (m) {
+    case ContactMethod::Rccm: return "rccm";
+    case ContactMethod::Newton: return "newton";
+    case ContactMethod::Bipotential: break;
+  }
+  return "bipotential";
+}
+
+std::vector<std::string> unused_settings(const Config& cfg) {
+  const SolverParams& S = cfg.solver;
+  const bool bipotential = S.method == ContactMethod::Bipotential;
+  const bool gauss_seidel = bipotential && S.form == SweepForm::GaussSeidel;
+  const Method m = cfg.integrator.method;
+  const std::string solver = std::string("the \"") + contact_method_name(S.method) + "\" solver";
+  const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
+  const std::string integrator = std::string("the \"") + method_name(m) + "\" integrator" +
+                                 (m == Method::RateIndependent && limit ? " (alpha = 0 on every interface)" : "");
+  const std::string direct = "the direct solver of K0 (solver.linear)";
+  struct Use {
+    const char* path;
+    bool read;             // by this run's methods
+    const std::string& by; // the method of this run that does not read it
+    const char* readers;   // who reads it
+  };
+  const std::vector<Use> uses{
+      {"solver.over_relaxation", S.method == ContactMethod::Rccm, solver, "the \"rccm\" solver"},
+      {"solver.local_iterations", gauss_seidel || S.method == ContactMethod::Newton, solver,
+       "the \"bipotential\" solver's Gauss-Seidel form and the \"newton\" solver"},
+      {"solver.form", bipotential, solver, "the \"bipotential\" solver"},
+      {"solver.anderson", gauss_seidel, solver, "the \"bipotential\" solver's Gauss-Seidel form"},
+      {"solver.relaxation", bipotential && !gauss_seidel, solver, "the \"bipotential\" solver's Jacobi form"},
+      {"solver.active_set", bipotential, solver, "the \"bipotential\" solver"},
+      {"solver.active_set_max_nodes", bipotential, solver, "the \"bipotential\" solver"},
+      {"solver.compressed_min_nodes", bipotential || (S.method == ContactMethod::Newton && cfg.mesh.dim() == 2), solver,
+       "the \"bipotential\" solver and the 2D \"newton\" solver"},
+      {"integrator.scheme", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.table", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.rtol", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.atol", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.max_step", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.initial_step", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.fixed_step", m == Method::Arkode, integrator, "\"arkode\" (the fixed-step methods take time.steps)"},
+      {"integrator.min_step", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.max_steps", m == Method::Arkode, integrator, "\"arkode\""},
+      {"integrator.fixed_point_tolerance", m == Method::RateIndependent, integrator, "\"rate-independent\""},
+      {"integrator.fixed_point_iterations", m == Method::RateIndependent, integrator, "\"rate-independent\""},
+      {"solver.linear_tolerance", S.linear.kind == LinearSolver::CgGamg, direct, "solver.linear = \"cg-gamg\""}};
+  std::vector<std::string> notes;
+  for (const Use& u : uses)
+    if (!u.read && cfg.lines.count(u.path))
+      notes.push_back(cfg.where(u.path) + ": not read by " + u.by + ", only by " + u.readers + "; it has no effect on this run");
+  return notes;
+}
+
 }  // namespace rccm

@@ -31,13 +31,4 @@ std::unique_ptr<ContactSolver> make_contact_solver(const SolverParams& params) {
   return std::make_unique<BipotentialSolver>(params);
 }
 
-const char* contact_method_name(ContactMethod m) {
-  switch (m) {
-    case ContactMethod::Rccm: return "rccm";
-    case ContactMethod::Newton: return "newton";
-    case ContactMethod::Bipotential: break;
-  }
-  return "bipotential";
-}
-
 }  // namespace rccm

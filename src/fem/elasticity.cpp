@@ -118,8 +118,12 @@ std::vector<Eigen::Vector4d> quadrature_3d(int k) {
   return q;
 }
 
-/// The point where a cell's strain and stress are reported: its centre.
-Eigen::Vector3d centre_3d(int k) { return k == 4 ? Eigen::Vector3d::Constant(0.25) : Eigen::Vector3d::Zero(); }
+/// The point where a cell's strain and stress are reported, in its reference coordinates: its
+/// centre (T3 (1/3, 1/3), T4 (1/4, 1/4, 1/4), Q4 and H8 the origin).
+Eigen::Vector3d centre(int dim, int k) {
+  if (dim == 2) return k == 3 ? Eigen::Vector3d(1.0 / 3, 1.0 / 3, 0.0) : Eigen::Vector3d::Zero();
+  return k == 4 ? Eigen::Vector3d::Constant(0.25) : Eigen::Vector3d::Zero();
+}
 
 /// Quadrature points (xi, eta, weight) of a cell: T3 1 point (3 axisymmetric: the hoop
 /// term varies), Q4 2 x 2 Gauss.
@@ -128,6 +132,16 @@ std::vector<Eigen::Vector3d> quadrature(int k, bool axisymmetric) {
   if (k == 3) return {{1.0 / 6, 1.0 / 6, 1.0 / 6}, {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6}};
   const double g = 1.0 / std::sqrt(3.0);
   return {{-g, -g, 1}, {g, -g, 1}, {g, g, 1}, {-g, g, 1}};
+}
+
+/// The measure of a reference cell, the sum of its quadrature weights (T3 1/2, Q4 4, T4 1/6, H8 8).
+double reference_measure(int dim, int k) {
+  double w = 0;
+  if (dim == 3)
+    for (const Eigen::Vector4d& q : quadrature_3d(k)) w += q[3];
+  else
+    for (const Eigen::Vector3d& q : quadrature(k, false)) w += q[2];
+  return w;
 }
 
 Eigen::VectorXd cell_displacement(const Mesh& mesh, const std::vector<int>& cell, const Eigen::VectorXd& u) {
@@ -180,15 +194,15 @@ CellFields cell_fields(const Mesh& mesh, const std::vector<Material>& body_mater
   Eigen::MatrixXd B;
   for (std::size_t c = 0; c < mesh.cells.size(); ++c) {
     if (mesh.dim == 3) {  // at the cell centre
-      strain_matrix_3d(mesh, mesh.cells[c], centre_3d(static_cast<int>(mesh.cells[c].size())), B);
+      strain_matrix_3d(mesh, mesh.cells[c], centre(3, static_cast<int>(mesh.cells[c].size())), B);
       const Voigt3 eps = B * cell_displacement(mesh, mesh.cells[c], u);
       f.strain.col(c) = eps;
       f.stress.col(c) = body_materials[mesh.cell_body[c]].D3() * eps;
       continue;
     }
     const auto& cell = mesh.cells[c];
-    const double centre = cell.size() == 3 ? 1.0 / 3 : 0.0;
-    strain_matrix(mesh, cell, centre, centre, B);
+    const Eigen::Vector3d r = centre(2, static_cast<int>(cell.size()));
+    strain_matrix(mesh, cell, r[0], r[1], B);
     Voigt eps = B * cell_displacement(mesh, cell, u), sigma;
     body_materials[mesh.cell_body[c]].complete(eps, sigma);
     f.strain.col(c) = eps;
@@ -205,10 +219,10 @@ SmallStrainCheck::SmallStrainCheck(const Mesh& mesh) : mesh_(mesh), first_(mesh.
     const auto& cell = mesh.cells[c];
     const int k = static_cast<int>(cell.size());
     for (int n : cell) dof_.push_back(mesh.dof(n, 0));
-    const double centre = k == 3 ? 1.0 / 3 : 0.0;
-    const Shape s = mesh.dim == 3 ? shape_3d(mesh, cell, centre_3d(k)) : shape_2d(mesh, cell, centre, centre);
+    const Eigen::Vector3d r = centre(mesh.dim, k);
+    const Shape s = mesh.dim == 3 ? shape_3d(mesh, cell, r) : shape_2d(mesh, cell, r[0], r[1]);
     gradients_.block(0, first_[c], mesh.dim, k) = s.dNx;
-    double dV = s.det * (mesh.dim == 3 ? (k == 4 ? 1.0 / 6 : 8.0) : (k == 3 ? 0.5 : 4.0));  // the cell's volume by its centre (exact for T3, T4 and parallelograms)
+    double dV = s.det * reference_measure(mesh.dim, k);  // the cell's volume by its centre (exact for T3, T4 and parallelograms)
     if (mesh.dim == 2 && mesh.axisymmetric) {
       gradients_.block(2, first_[c], 1, k) = s.N.transpose() / s.r;  // the hoop u_r / r
       dV *= 2 * M_PI * s.r;

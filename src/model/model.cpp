@@ -138,7 +138,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   if (supports_.size() == static_cast<std::size_t>(mesh_.num_dofs()))
     throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
   check_prescribed_gaps(cfg);
-  notes_ = interface_.notes;
+  notes_ = unused_settings(cfg);
+  notes_.insert(notes_.end(), interface_.notes.begin(), interface_.notes.end());
   note_tables_past_T(cfg);
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);

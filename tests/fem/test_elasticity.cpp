@@ -206,3 +206,28 @@ TEST_CASE("an axisymmetric body's share is by ring volume: a radial shift c beyo
   CHECK(e.fraction == Approx(1.5 / 7.5).epsilon(1e-12));
   CHECK(e.largest == Approx(c / 1.5).epsilon(1e-12));
 }
+
+TEST_CASE("the share beyond the limit is by volume across kinds of cells: a Q4 beside a T3 and an H8 beside a T4",
+          "[elasticity]") {
+  // A unit square (cube) and a triangle (tetrahedron) of area 1/2 (volume 1/6) sharing a side;
+  // the triangle's free corner moves along x by 0.2: grad u = 0.2 in it, 0 in the square.
+  for (int dim : {2, 3}) {
+    Mesh m;
+    m.dim = dim;
+    const int corners = dim == 2 ? 4 : 8;
+    for (int n = 0; n < corners; ++n) m.nodes.emplace_back(double(n == 1 || n == 2 || n == 5 || n == 6), double(n % 4 >= 2), double(n >= 4));
+    m.cells.push_back({0, 1, 2, 3});
+    if (dim == 3) m.cells.back().insert(m.cells.back().end(), {4, 5, 6, 7});
+    m.nodes.emplace_back(2.0, 0.0, 0.0);
+    m.cells.push_back(dim == 2 ? std::vector<int>{1, corners, 2} : std::vector<int>{1, corners, 2, 5});
+    m.cell_body.assign(2, 0);
+    m.body_names = {"pair"};
+    Eigen::VectorXd u = Eigen::VectorXd::Zero(m.num_dofs());
+    u[m.dof(corners, 0)] = 0.2;
+    const DeformationExcess e = SmallStrainCheck(m)(u, 0.1);
+    INFO(dim << "D");
+    CHECK(e.largest == Approx(0.2).epsilon(1e-12));
+    CHECK(e.cell == 1);
+    CHECK(e.fraction == Approx(dim == 2 ? 0.5 / 1.5 : (1.0 / 6) / (1 + 1.0 / 6)).epsilon(1e-12));
+  }
+}

@@ -7,6 +7,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -137,4 +138,65 @@ time = { T = 1.0; };
   CHECK_THROWS_WITH(load_config("sub/main.cfg"), Catch::StartsWith("sub/material.cfg:1: syntax error"));
   fs::current_path(cwd);
   fs::remove_all(dir);
+}
+
+TEST_CASE("a setting the run's methods do not read is noted with its line and who reads it", "[config]") {
+  // Each setting, with overrides under which this run reads it and overrides under which it does not.
+  struct Case {
+    std::string setting;
+    std::vector<std::vector<std::string>> read, unread;
+  };
+  const std::vector<Case> cases{
+      {"solver.over_relaxation=1.2", {{"solver.method=\"rccm\""}}, {{}, {"solver.method=\"newton\""}}},
+      {"solver.local_iterations=10", {{}, {"solver.method=\"newton\""}}, {{"solver.method=\"rccm\""}, {"solver.form=\"jacobi\""}}},
+      {"solver.form=\"gauss-seidel\"", {{}}, {{"solver.method=\"newton\""}}},
+      {"solver.anderson=3", {{}}, {{"solver.form=\"jacobi\""}, {"solver.method=\"newton\""}}},
+      {"solver.relaxation=0.5", {{"solver.form=\"jacobi\""}}, {{}, {"solver.method=\"rccm\""}}},
+      {"solver.active_set=true", {{}}, {{"solver.method=\"newton\""}}},
+      {"solver.active_set_max_nodes=100", {{}}, {{"solver.method=\"rccm\""}}},
+      {"solver.compressed_min_nodes=100", {{}, {"solver.method=\"newton\""}}, {{"solver.method=\"rccm\""}}},
+      {"solver.linear_tolerance=1e-8", {{"solver.linear=\"cg-gamg\""}}, {{}}},
+      {"integrator.scheme=\"erk\"", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.table=\"ARKODE_SDIRK_5_3_4\"", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.rtol=1e-7", {{}}, {{"integrator.method=\"euler\""}, {"interface.alpha=0"}}},
+      {"integrator.atol=1e-9", {{}}, {{"integrator.method=\"contact-only\""}}},
+      {"integrator.max_step=0.1", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.initial_step=0.01", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.fixed_step=0.1", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.min_step=1e-6", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.max_steps=1000", {{}}, {{"integrator.method=\"euler\""}}},
+      {"integrator.fixed_point_tolerance=1e-8", {{"integrator.method=\"rate-independent\""}}, {{}}},
+      {"integrator.fixed_point_iterations=50", {{"interface.alpha=0"}}, {{}}}};
+  for (const Case& c : cases) {
+    const std::string name = c.setting.substr(0, c.setting.find('='));
+    for (bool read : {true, false})
+      for (std::vector<std::string> overrides : read ? c.read : c.unread) {
+        overrides.push_back(c.setting);
+        const std::vector<std::string> notes = unused_settings(test::config_from_text(good, overrides));
+        INFO(c.setting << (read ? " read" : " unread") << " with " << (overrides.size() > 1 ? overrides.front() : "defaults"));
+        CHECK(notes.size() == (read ? 0u : 1u));
+        if (!read && !notes.empty()) CHECK_THAT(notes[0], Catch::StartsWith("--set " + name + ": not read by "));
+      }
+  }
+  // The rate-independent limit chosen by alpha = 0 says so.
+  CHECK_THAT(unused_settings(test::config_from_text(good, {"integrator.rtol=1e-7", "interface.alpha=0"})).at(0),
+             Catch::Contains("the \"rate-independent\" integrator (alpha = 0 on every interface), only by \"arkode\""));
+  CHECK_THAT(unused_settings(test::config_from_text(good, {"integrator.rtol=1e-7", "integrator.method=\"rate-independent\""})).at(0),
+             !Catch::Contains("alpha = 0"));
+  // The 3D Newton step keeps W0 dense.
+  const std::vector<std::string> peel = unused_settings(test::corner_peel(2, {"solver.method=\"newton\"", "solver.compressed_min_nodes=100"}));
+  CHECK(std::count_if(peel.begin(), peel.end(), [](const std::string& n) { return n.find("compressed_min_nodes") != n.npos; }) == 1);
+  // A setting written in the file is named by its line, and the run says it before its first step.
+  const Config c = test::config_from_text(std::string(good) + "solver = { method = \"newton\"; anderson = 3; };\n");
+  const std::vector<std::string> notes = test::make_model(c).notes();
+  REQUIRE(notes.size() == 1);
+  CHECK(notes[0] == c.file + ":8: solver.anderson: not read by the \"newton\" solver, only by the \"bipotential\" solver's "
+                             "Gauss-Seidel form; it has no effect on this run");
+  // The shipped configs write none, whichever methods `rccm compare` gives them.
+  for (const char* file : {"b1.cfg", "b2.cfg", "corner-peel.cfg"})
+    for (const char* method : {"arkode", "euler", "rate-independent", "contact-only"})
+      for (const char* solver : {"bipotential", "rccm", "newton"})
+        CHECK(unused_settings(load_config(test::shipped(file), {std::string("integrator.method=\"") + method + "\"",
+                                                                 std::string("solver.method=\"") + solver + "\""}))
+                  .empty());
 }

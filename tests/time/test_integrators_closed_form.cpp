@@ -132,7 +132,7 @@ TEST_CASE("time convergence orders on the closed form: Euler 1, ARKODE's DIRK an
     for (double dt : {0.1, 0.05, 0.025, 0.0125}) {
       std::vector<std::string> set = s.settings;
       set.push_back("time.steps=" + std::to_string(static_cast<int>(std::lround(o.T / dt))));
-      set.push_back("integrator.fixed_step=" + std::to_string(dt));
+      if (std::string(s.name) != "euler") set.push_back("integrator.fixed_step=" + std::to_string(dt));  // ARKODE's
       const RunResult r = run(o, set);
       CHECK(r.warnings.empty());  // Euler stays below its stability limit on these grids
       const double e = max_error(r, exact);

@@ -226,12 +226,21 @@ struct Config {
 /// The config name of a method ("arkode", "euler", "rate-independent", "contact-only").
 const char* method_name(Method m);
 
-/// The config name of a hypothesis ("plane_strain", "plane_stress", "axisymmetric").
+/// The config name of a contact method ("bipotential", "rccm", "newton").
+const char* contact_method_name(ContactMethod m);
+
+/// A note for each setting the config writes that the run's methods do not read (e.g.
+/// integrator.rtol with the "euler" integrator, solver.anderson with the "newton" solver),
+/// naming where it is written and which method reads it. time.steps is not noted: the shipped
+/// configs keep it for `rccm compare`'s fixed-step integrators beside ARKODE.
+std::vector<std::string> unused_settings(const Config& cfg);
+
 /// The names whose digests differ between two Config::settings_parts, as a phrase
 /// ("interface.alpha differs", "interface.alpha, time.T differ"); empty when either is empty (a
 /// checkpoint or report of an earlier version).
 std::string differing_settings(const std::string& parts, const std::string& other);
 
+/// The config name of a hypothesis ("plane_strain", "plane_stress", "axisymmetric").
 const char* hypothesis_name(Hypothesis h);
 
 }  // namespace rccm

@@ -36,7 +36,4 @@ class ContactSolver {
 /// The contact solver the config asks for (solver.method and its settings).
 std::unique_ptr<ContactSolver> make_contact_solver(const SolverParams& params);
 
-/// The config name of a contact method ("bipotential", "rccm", "newton").
-const char* contact_method_name(ContactMethod m);
-
 }  // namespace rccm
