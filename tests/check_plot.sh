@@ -28,7 +28,16 @@ watched = [k[: -len(" Radh_n [N]")] for k in header if k.endswith(" Radh_n [N]")
 import glob
 profiles = sorted(glob.glob(os.path.join(run, "interface_t*.csv")))
 solid = bool(profiles) and "z [mm]" in open(profiles[0]).readline()  # 3D: beta over the surface, no deformed figure
-names = ["profiles", "beta_map" if solid else "deformed", "force"] + ["history_" + w for w in watched]
+# A watched point's name in its figure's file: characters other than letters, digits, . - _
+# made _ (README "output.watch"); the second of the same name gets _2.
+import re
+stems = []
+for w in watched:
+    stem = re.sub(r"[^A-Za-z0-9._-]", "_", w)[:80].lstrip(".") or "_"
+    stems.append(stem if stem not in stems else stem + "_2")
+names = ["profiles", "beta_map" if solid else "deformed", "force"] + ["history_" + s for s in stems]
+stray = set(os.listdir(os.path.join(run, "plots"))) - {n + e for n in names for e in (".png", ".svg")}
+stray = {f for f in stray if not f.startswith(".rccm-plots") and f.startswith("history")}
 bad = 0
 def fail(msg):
     global bad
@@ -59,6 +68,8 @@ for name in names:
             fail(f"{name}.svg is not a drawing")
     except (OSError, ET.ParseError) as e:
         fail(f"{name}.svg: {e}")
+if stray:
+    fail(f"figures of no watched point: {sorted(stray)}")
 print(f"{len(names)} figures of {run}: {len(names) * 2} files checked")
 sys.exit(1 if bad else 0)
 EOF

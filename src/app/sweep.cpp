@@ -247,10 +247,17 @@ std::size_t reported_load(const std::vector<SweepCase>& cases) {
 
 void write_sweep_summary(std::ostream& out, const std::string& directory, const std::vector<SweepAxis>& axes,
                          const std::vector<SweepCase>& cases) {
-  // The output times are those of the config (every case has the same unless a case sweeps them).
-  std::vector<double> times = cases.front().config.output.times;
-  const double T = cases.front().config.time.T;
-  if (times.empty() || times.back() < T * (1 - 1e-12)) times.push_back(T);  // T once, an output time or not
+  // The output times of every case and its T, once each (a sweep of time.T or output.times
+  // gives its cases different ones: a case has its figure at its own times only).
+  double T = 0;
+  for (const SweepCase& c : cases) T = std::max(T, c.config.time.T);
+  std::vector<double> times;
+  for (const SweepCase& c : cases) {
+    times.insert(times.end(), c.config.output.times.begin(), c.config.output.times.end());
+    times.push_back(c.config.time.T);
+  }
+  std::sort(times.begin(), times.end());
+  times.erase(std::unique(times.begin(), times.end(), [&](double a, double b) { return b - a <= 1e-12 * T; }), times.end());
   std::vector<std::string> header = {"case"};
   for (const SweepAxis& a : axes) header.push_back(a.path);
   const std::size_t load = reported_load(cases);

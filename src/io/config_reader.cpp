@@ -6,6 +6,7 @@
 #include "rccm/base/memory.hpp"
 #include "rccm/base/suggest.hpp"
 #include "rccm/io/csv.hpp"
+#include "rccm/io/result_writer.hpp"
 #include "rccm/la/parallel.hpp"
 #include "rccm/fem/gmsh_mesh.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
@@ -800,6 +801,7 @@ OutputParams read_output(const Reader& r, const Setting& root, double T, int dim
     std::sort(O.times.begin(), O.times.end());
   }
   std::vector<std::string> names;  // watch points and probes name columns: one name once
+  std::vector<std::string> columns = history_run_columns();  // and no column twice ("min beta")
   for (const char* list : {"watch", "probes"}) {
     if (!o->exists(list)) continue;
     const Setting& ws = (*o)[list];
@@ -814,7 +816,13 @@ OutputParams read_output(const Reader& r, const Setting& root, double T, int dim
       if (std::find(names.begin(), names.end(), p.name) != names.end())
         r.fail(ws[i]["name"], "'" + p.name + "' names another watch point or probe already");
       names.push_back(p.name);
-      (std::string(list) == "watch" ? O.watch : O.probes).push_back(p);
+      const bool watch = std::string(list) == "watch";
+      for (const std::string& column : history_point_columns(p.name, watch, dim)) {
+        if (std::find(columns.begin(), columns.end(), column) != columns.end())
+          r.fail(ws[i]["name"], "'" + p.name + "' would name history.csv's column '" + column + "' twice: choose another name");
+        columns.push_back(column);
+      }
+      (watch ? O.watch : O.probes).push_back(p);
     }
   }
   return O;

@@ -44,17 +44,15 @@ std::vector<double> normal_first(const Layout& L, const Eigen::VectorXd& v, int 
 }
 
 std::vector<std::string> history_header(const Config& cfg, int dim) {
-  std::vector<std::string> h = {"t [s]",    "dt [s]", "contact solves", "sweeps mean",          "sweeps max",
-                                "residual", "min beta", "stick",       "slide",       "separated",
-                                "equilibrium residual", "step wall [s]"};
+  std::vector<std::string> h = history_run_columns();
   for (const NamedPoint& w : cfg.output.watch) {
-    h.push_back(w.name + " beta");
-    for (const char* q : {"u", "Radh", "Rbar"})
-      for (const std::string& c : component_labels(dim))
-        h.push_back(w.name + " " + q + "_" + c + (q[0] == 'u' ? " [mm]" : " [N]"));
+    const std::vector<std::string> columns = history_point_columns(w.name, true, dim);
+    h.insert(h.end(), columns.begin(), columns.end());
   }
-  for (const NamedPoint& p : cfg.output.probes)
-    for (int c = 0; c < dim; ++c) h.push_back(p.name + " u_" + "xyz"[c] + " [mm]");
+  for (const NamedPoint& p : cfg.output.probes) {
+    const std::vector<std::string> columns = history_point_columns(p.name, false, dim);
+    h.insert(h.end(), columns.begin(), columns.end());
+  }
   return h;
 }
 
@@ -74,6 +72,25 @@ std::vector<std::string> curves_header(const Config& cfg) {
 }
 
 }  // namespace
+
+std::vector<std::string> history_run_columns() {
+  return {"t [s]",    "dt [s]",   "contact solves", "sweeps mean",          "sweeps max",
+          "residual", "min beta", "stick",          "slide",                "separated",
+          "equilibrium residual",   "step wall [s]"};
+}
+
+std::vector<std::string> history_point_columns(const std::string& name, bool watch, int dim) {
+  std::vector<std::string> h;
+  if (!watch) {
+    for (int c = 0; c < dim; ++c) h.push_back(name + " u_" + "xyz"[c] + " [mm]");
+    return h;
+  }
+  h.push_back(name + " beta");
+  for (const char* q : {"u", "Radh", "Rbar"})
+    for (const std::string& c : component_labels(dim))
+      h.push_back(name + " " + q + "_" + c + (q[0] == 'u' ? " [mm]" : " [N]"));
+  return h;
+}
 
 double debonded_length(const Model& model, const Eigen::VectorXd& beta) {
   double length = 0;

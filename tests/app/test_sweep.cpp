@@ -92,6 +92,38 @@ TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha"
   CHECK(cases[2].result.snapshots.back().debonded_length < cases[0].result.snapshots.back().debonded_length);
 }
 
+TEST_CASE("a sweep of time.T: a column for each case's T and output times, each filled where the case has it", "[sweep]") {
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_swept_T";
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  const std::vector<SweepAxis> axes = {{"time.T", {"2", "4"}}, {"output.times", {"[1.0]", "[1.0, 1.5]"}}};
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {}, axes, dir.string());
+  REQUIRE(cases.size() == 4);
+  run_sweep(cases, 1);
+  std::ostringstream table;
+  write_sweep_summary(table, dir.string(), axes, cases);
+  const test::CsvTable summary = test::read_csv((dir / "summary.csv").string());
+  const std::vector<double> times = {1.0, 1.5, 2.0, 4.0};
+  for (std::size_t k = 0; k < cases.size(); ++k) {
+    const test::CsvTable curves = test::read_csv((dir / cases[k].name / "curves.csv").string());
+    const std::vector<double> t = curves.numbers("t [s]"), length = curves.numbers("debonded length [mm]");
+    const double T = cases[k].config.time.T;
+    const std::vector<double>& own = cases[k].config.output.times;
+    for (double time : times) {
+      const auto column = std::find(summary.header.begin(), summary.header.end(), "debonded at t=" + csv_number(time) + " [mm]");
+      REQUIRE(column != summary.header.end());
+      const std::string cell = summary.rows[k][std::size_t(column - summary.header.begin())];
+      INFO(cases[k].name << " at t = " << time);
+      const bool has = time == T || std::find(own.begin(), own.end(), time) != own.end();
+      CHECK(cell.empty() == !has);
+      if (has && !cell.empty())
+        CHECK(std::stod(cell) == Approx(length[std::find(t.begin(), t.end(), time) - t.begin()]).epsilon(1e-9));
+    }
+  }
+  CHECK(summary.header.size() == 1 + axes.size() + 3 + times.size() + 6);  // t = 1, 1.5, 2, 4 once each
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a sweep whose output times end at T: one column for T, each cell the case's own debonded length", "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_T";
   fs::remove_all(dir);

@@ -33,6 +33,11 @@ struct ResumePoint {
 /// tributary measures of those pairs), mm. One definition for every file and plot.
 double debonded_length(const Model& model, const Eigen::VectorXd& beta);
 
+/// history.csv's columns of the run's own figures, before those of the watch points and probes.
+std::vector<std::string> history_run_columns();
+/// history.csv's columns of a watch point (watch) or a probe named `name` in a mesh of `dim`.
+std::vector<std::string> history_point_columns(const std::string& name, bool watch, int dim);
+
 /// Load k's name in the result files' headers: "L1 top_left.y" (its number, node set and direction).
 std::string load_label(const Config& cfg, std::size_t k);
 
