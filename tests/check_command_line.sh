@@ -5,7 +5,8 @@
 #     string, -o DIR writes there (a DIR named like a number or "." too), --restart '' is
 #     refused, a directory as mesh.file is bad input, a mistyped command is named; a doubtful
 #     interface warns;
-#  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`;
+#  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`, and in `compare` once
+#     with a note;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too
 #     (its manifest read with CRLF line ends as well);
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
@@ -108,6 +109,10 @@ check; "$rccm" run "$b1" -q --set interface.g0=0.5 --set integrator.max_steps=50
 check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \
   || fail "alpha = 0: $(cat "$work/err")"
 grep -q "integrator: rate-independent" "$work/alpha0/report.txt" 2>/dev/null || fail "alpha = 0 did not run rate-independent"
+# ... and in `compare` once, saying so for the integrators it stands for.
+check; "$rccm" compare "$b1" --integrators euler,arkode "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?
+[ "$rc" -eq 0 ] && grep -qF "note: alpha = 0 on every interface: the rate-independent limit runs once for the integrators asked (euler, arkode)" "$work/err" \
+  || fail "compare at alpha = 0: exit $rc, $(cat "$work/err")"
 
 # 3. --force: an empty result set, other files kept.
 out=$work/forced

@@ -89,6 +89,12 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
   // (as `run` and `sweep`); the viscous integrators need alpha > 0 everywhere.
   const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
   const std::vector<std::string> integrator_names = limit ? std::vector<std::string>{"rate-independent"} : integrators;
+  if (limit && integrators != integrator_names) {
+    std::string asked;
+    for (const std::string& name : integrators) asked += (asked.empty() ? "" : ", ") + name;
+    std::fprintf(stderr, "rccm: note: alpha = 0 on every interface: the rate-independent limit runs once for the "
+                         "integrators asked (%s)\n", asked.c_str());
+  }
   for (const std::string& name : integrator_names)
     for (const std::string& solver : solver_names) {
       CompareCase c{solvers.size() > 1 ? name + "/" + solver : name, cfg, {}};

@@ -13,6 +13,7 @@
 #include "rccm/io/run_report.hpp"
 
 #include <algorithm>
+#include <cstdlib>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -64,6 +65,16 @@ std::string shell_quoted(const std::string& s) {
   return out + "'";
 }
 
+/// Two values of a sweep's list that set the same: the same text, or the same number however
+/// written (0.1, 0.10, 1e-1).
+bool same_value(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  char* end_a = nullptr;
+  char* end_b = nullptr;
+  const double x = std::strtod(a.c_str(), &end_a), y = std::strtod(b.c_str(), &end_b);
+  return end_a != a.c_str() && *end_a == '\0' && end_b != b.c_str() && *end_b == '\0' && x == y;
+}
+
 }  // namespace
 
 const char* case_status_name(CaseStatus s) {
@@ -96,8 +107,12 @@ void split_sweep_settings(const std::vector<std::string>& items, std::vector<Swe
       throw InputError("sweep: --set " + a.path + " is given more than once: give each setting once (a list sweeps it)");
     paths.push_back(a.path);
     for (std::size_t k = 0; k < a.values.size(); ++k)
-      if (std::find(a.values.begin(), a.values.begin() + k, a.values[k]) != a.values.begin() + k)
-        throw InputError("sweep: --set " + a.path + " lists " + a.values[k] + " twice: give each value once");
+      for (std::size_t j = 0; j < k; ++j)
+        if (same_value(a.values[j], a.values[k]))
+          throw InputError("sweep: --set " + a.path + " lists " +
+                           (a.values[j] == a.values[k] ? a.values[k] + " twice"
+                                                       : a.values[j] + " and " + a.values[k] + ", the same number") +
+                           ": give each value once");
   }
 }
 
@@ -109,13 +124,20 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
     for (const SweepCase& c : cases)
       for (const std::string& v : axis.values) {
         SweepCase n = c;
-        n.name += (n.name.empty() ? "" : "_") + leaf(axis.path) + "=" + v;
+        std::string part = v;  // a value with a path in it names one directory, not a nest
+        std::replace(part.begin(), part.end(), '/', '_');
+        n.name += (n.name.empty() ? "" : "_") + leaf(axis.path) + "=" + part;
         n.values.push_back(v);
         n.overrides.push_back(axis.path + "=" + v);
         grown.push_back(n);
       }
     cases = grown;
   }
+  for (std::size_t k = 0; k < cases.size(); ++k)
+    for (std::size_t j = 0; j < k; ++j)
+      if (cases[j].name == cases[k].name)
+        throw InputError("sweep: two cases would share the directory " + cases[k].name +
+                         " (a '/' in a value becomes '_' there): give values that differ otherwise");
   const GmshReuse reuse;  // the cases' geometry read once when no case changes it
   for (SweepCase& c : cases) {
     c.overrides.insert(c.overrides.begin(), fixed.begin(), fixed.end());

@@ -170,7 +170,7 @@ std::string Config::controls_fingerprint() const {
 std::string Config::where(const std::string& path) const {
   const auto it = lines.find(path);
   if (it == lines.end()) return file + ": " + path;  // a default, or a setting read before the lines were kept
-  if (it->second == 0) return "--set " + path;      // given on the command line (or by -o)
+  if (it->second == 0) return path == "output.directory" ? "-o / --set " + path : "--set " + path;  // on the command line
   return file + ":" + std::to_string(it->second) + ": " + path;
 }
 

@@ -51,6 +51,10 @@ TEST_CASE("sweep settings: lists are axes, arrays and single values are fixed", 
   CHECK_THROWS_WITH(split({"interface.alpha=5", "interface.alpha=0.1,1"}),
                     Catch::Contains("sweep: --set interface.alpha is given more than once"));
   CHECK_THROWS_WITH(split({"interface.alpha=1,2,1"}), Catch::Contains("lists 1 twice"));
+  // The same number written twice otherwise: two cases of one run.
+  CHECK_THROWS_WITH(split({"interface.alpha=0.1,0.10"}), Catch::Contains("lists 0.1 and 0.10, the same number"));
+  CHECK_THROWS_WITH(split({"interface.alpha=1e-1,2,0.1"}), Catch::Contains("lists 1e-1 and 0.1, the same number"));
+  CHECK_NOTHROW(split({"mesh.element=\"T3\",\"Q4\"", "interface.alpha=0.1,0.11"}));
   CHECK_NOTHROW(split({"interface.alpha=1,2", "interface.mu=0.1,0.2", "time.T=5.0"}));
 }
 
@@ -64,6 +68,19 @@ TEST_CASE("sweep cases: a grid of two axes, alpha = 0 is the rate-independent li
   CHECK(cases[3].config.integrator.method == Method::Arkode);
   CHECK(cases[3].config.interfaces[0].mu == 0.3);
   CHECK(cases[1].config.output.directory == "/tmp/rccm_sweep_grid/alpha=0_mu=0.3");
+}
+
+TEST_CASE("sweep cases: a value with a path in it names one directory of the sweep, not a nest", "[sweep]") {
+  const std::string dcb = test::shipped("dcb.cfg");
+  const std::vector<SweepCase> cases =
+      make_sweep_cases(dcb, {}, {{"mesh.file", {"\"dcb.geo\"", "\"../config/dcb.geo\""}}}, "/tmp/rccm_sweep_paths");
+  REQUIRE(cases.size() == 2);
+  CHECK(cases[1].name == "file=\".._config_dcb.geo\"");
+  for (const SweepCase& c : cases) CHECK(fs::path(c.config.output.directory).parent_path() == "/tmp/rccm_sweep_paths");
+  CHECK(fs::equivalent(cases[1].config.mesh.file, test::shipped("dcb.geo")));  // the value itself is unchanged
+  // Two values that differ only there would share a directory.
+  CHECK_THROWS_WITH(make_sweep_cases(dcb, {}, {{"mesh.file", {"\"a/dcb.geo\"", "\"a_dcb.geo\""}}}, "/tmp/rccm_sweep_paths"),
+                    Catch::Contains("two cases would share the directory file=\"a_dcb.geo\""));
 }
 
 TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha", "[sweep]") {

@@ -210,7 +210,7 @@ struct Config {
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
   /// the wrong length once the mesh is known, an unwritable directory); "--set path" for one
-  /// given on the command line.
+  /// given on the command line ("-o / --set output.directory": -o sets it too).
   std::string where(const std::string& path) const;
 
   MeshParams mesh;
