@@ -6,7 +6,7 @@
 #     refused, a directory as mesh.file is bad input, a mistyped command is named; a doubtful
 #     interface warns;
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`, and in `compare` once
-#     with a note;
+#     with a note; a setting the run's methods do not read is said, not reported as a warning;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too
 #     (its manifest read with CRLF line ends as well);
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
@@ -113,6 +113,11 @@ grep -q "integrator: rate-independent" "$work/alpha0/report.txt" 2>/dev/null || 
 check; "$rccm" compare "$b1" --integrators euler,arkode "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?
 [ "$rc" -eq 0 ] && grep -qF "note: alpha = 0 on every interface: the rate-independent limit runs once for the integrators asked (euler, arkode)" "$work/err" \
   || fail "compare at alpha = 0: exit $rc, $(cat "$work/err")"
+
+# A setting the run's methods do not read: said before the first step, not a warning of the report.
+check; "$rccm" run "$b1" -q "${short[@]}" --set integrator.rtol=1e-7 -o "$work/unread" >/dev/null 2>"$work/err"; rc=$?
+[ "$rc" -eq 0 ] && grep -qF 'note: --set integrator.rtol: not read by the "euler" integrator, only by "arkode"' "$work/err" \
+  && ! grep -q "not read by" "$work/unread/report.txt" "$work/unread/report.json" || fail "a setting not read: exit $rc, $(cat "$work/err")"
 
 # 3. --force: an empty result set, other files kept.
 out=$work/forced

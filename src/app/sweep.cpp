@@ -13,6 +13,7 @@
 #include "rccm/io/run_report.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cstdlib>
 #include <atomic>
 #include <cmath>
@@ -69,10 +70,16 @@ std::string shell_quoted(const std::string& s) {
 /// written (0.1, 0.10, 1e-1).
 bool same_value(const std::string& a, const std::string& b) {
   if (a == b) return true;
-  char* end_a = nullptr;
-  char* end_b = nullptr;
-  const double x = std::strtod(a.c_str(), &end_a), y = std::strtod(b.c_str(), &end_b);
-  return end_a != a.c_str() && *end_a == '\0' && end_b != b.c_str() && *end_b == '\0' && x == y;
+  // A whole number (spaces around it allowed, as in "0.1, 0.10"), or nothing.
+  const auto number = [](const std::string& text) -> std::optional<double> {
+    char* end = nullptr;
+    const double x = std::strtod(text.c_str(), &end);
+    while (end != text.c_str() && std::isspace(static_cast<unsigned char>(*end))) ++end;
+    if (end == text.c_str() || *end != '\0') return std::nullopt;
+    return x;
+  };
+  const std::optional<double> x = number(a), y = number(b);
+  return x && y && *x == *y;
 }
 
 }  // namespace
@@ -271,15 +278,13 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
                          const std::vector<SweepCase>& cases) {
   // The output times of every case and its T, once each (a sweep of time.T or output.times
   // gives its cases different ones: a case has its figure at its own times only).
-  double T = 0;
-  for (const SweepCase& c : cases) T = std::max(T, c.config.time.T);
   std::vector<double> times;
   for (const SweepCase& c : cases) {
     times.insert(times.end(), c.config.output.times.begin(), c.config.output.times.end());
     times.push_back(c.config.time.T);
   }
   std::sort(times.begin(), times.end());
-  times.erase(std::unique(times.begin(), times.end(), [&](double a, double b) { return b - a <= 1e-12 * T; }), times.end());
+  times.erase(std::unique(times.begin(), times.end(), [](double a, double b) { return b - a <= 1e-12 * b; }), times.end());
   std::vector<std::string> header = {"case"};
   for (const SweepAxis& a : axes) header.push_back(a.path);
   const std::size_t load = reported_load(cases);
@@ -317,7 +322,7 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
       figures[1] = load < r.peak_time.size() ? r.peak_time[load] : 0.0;
       for (std::size_t k = 0; k < times.size(); ++k)
         for (const Snapshot& s : r.snapshots)
-          if (std::abs(s.t - times[k]) <= 1e-12 * T) figures[2 + k] = s.debonded_length;
+          if (std::abs(s.t - times[k]) <= 1e-12 * times[k]) figures[2 + k] = s.debonded_length;
       const double last[] = {r.energy.damage_dissipation, r.energy.friction_dissipation, r.energy.relative_error(),
                              double(r.integrator.steps), r.wall_seconds};
       std::copy(std::begin(last), std::end(last), figures.end() - 5);

@@ -211,7 +211,8 @@ std::vector<std::string> unused_settings(const Config& cfg) {
   const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
   const std::string integrator = std::string("the \"") + method_name(m) + "\" integrator" +
                                  (m == Method::RateIndependent && limit ? " (alpha = 0 on every interface)" : "");
-  const std::string direct = "the direct solver of K0 (solver.linear)";
+  const std::string cholmod = "solver.linear = \"cholmod\"";
+  const std::string active_set = solver + (bipotential ? " without its exact step (solver.active_set = false)" : "");
   struct Use {
     const char* path;
     bool read;             // by this run's methods
@@ -226,7 +227,7 @@ std::vector<std::string> unused_settings(const Config& cfg) {
       {"solver.anderson", gauss_seidel, solver, "the \"bipotential\" solver's Gauss-Seidel form"},
       {"solver.relaxation", bipotential && !gauss_seidel, solver, "the \"bipotential\" solver's Jacobi form"},
       {"solver.active_set", bipotential, solver, "the \"bipotential\" solver"},
-      {"solver.active_set_max_nodes", bipotential, solver, "the \"bipotential\" solver"},
+      {"solver.active_set_max_nodes", bipotential && S.active_set, active_set, "the \"bipotential\" solver's exact step"},
       {"solver.compressed_min_nodes", bipotential || (S.method == ContactMethod::Newton && cfg.mesh.dim() == 2), solver,
        "the \"bipotential\" solver and the 2D \"newton\" solver"},
       {"integrator.scheme", m == Method::Arkode, integrator, "\"arkode\""},
@@ -240,7 +241,8 @@ std::vector<std::string> unused_settings(const Config& cfg) {
       {"integrator.max_steps", m == Method::Arkode, integrator, "\"arkode\""},
       {"integrator.fixed_point_tolerance", m == Method::RateIndependent, integrator, "\"rate-independent\""},
       {"integrator.fixed_point_iterations", m == Method::RateIndependent, integrator, "\"rate-independent\""},
-      {"solver.linear_tolerance", S.linear.kind == LinearSolver::CgGamg, direct, "solver.linear = \"cg-gamg\""}};
+      {"solver.linear_tolerance", S.linear.kind != LinearSolver::Cholmod, cholmod,
+       "solver.linear = \"cg-gamg\" and \"mumps\" (\"auto\" under mpirun)"}};
   std::vector<std::string> notes;
   for (const Use& u : uses)
     if (!u.read && cfg.lines.count(u.path))

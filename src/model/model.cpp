@@ -125,7 +125,10 @@ Model::Model(const Config& cfg, Mesh mesh)
                  (cfg.solver.method == ContactMethod::Bipotential ||
                   (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2));
   const double m = interface_.layout.offset(interface_.size());
-  const bool exact = cfg.solver.active_set && interface_.size() <= cfg.solver.active_set_max_nodes;
+  // The exact step's matrices: the bipotential solver's when it takes the step, 2D Newton's always.
+  const bool exact = (cfg.solver.method == ContactMethod::Bipotential && cfg.solver.active_set &&
+                      interface_.size() <= cfg.solver.active_set_max_nodes) ||
+                     (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2);
   if (!compress_W0_)
     require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
                    std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
@@ -138,8 +141,7 @@ Model::Model(const Config& cfg, Mesh mesh)
   if (supports_.size() == static_cast<std::size_t>(mesh_.num_dofs()))
     throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
   check_prescribed_gaps(cfg);
-  notes_ = unused_settings(cfg);
-  notes_.insert(notes_.end(), interface_.notes.begin(), interface_.notes.end());
+  notes_ = interface_.notes;
   note_tables_past_T(cfg);
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);

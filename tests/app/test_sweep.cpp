@@ -54,7 +54,8 @@ TEST_CASE("sweep settings: lists are axes, arrays and single values are fixed", 
   // The same number written twice otherwise: two cases of one run.
   CHECK_THROWS_WITH(split({"interface.alpha=0.1,0.10"}), Catch::Contains("lists 0.1 and 0.10, the same number"));
   CHECK_THROWS_WITH(split({"interface.alpha=1e-1,2,0.1"}), Catch::Contains("lists 1e-1 and 0.1, the same number"));
-  CHECK_NOTHROW(split({"mesh.element=\"T3\",\"Q4\"", "interface.alpha=0.1,0.11"}));
+  CHECK_THROWS_WITH(split({"interface.alpha=0.1 ,0.10"}), Catch::Contains("the same number"));
+  CHECK_NOTHROW(split({"mesh.element=\"T3\",\"Q4\"", "interface.alpha=0.1,0.11", "interface.mu=0.1,0.1x"}));
   CHECK_NOTHROW(split({"interface.alpha=1,2", "interface.mu=0.1,0.2", "time.T=5.0"}));
 }
 
