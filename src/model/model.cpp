@@ -125,10 +125,13 @@ Model::Model(const Config& cfg, Mesh mesh)
                  (cfg.solver.method == ContactMethod::Bipotential ||
                   (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2));
   const double m = interface_.layout.offset(interface_.size());
-  // The exact step's matrices: the bipotential solver's when it takes the step, 2D Newton's always.
+  // Three more (dim m)^2 matrices beside W0 and its factor block: the exact step's (the
+  // bipotential solver's when it takes the step, 2D Newton's always) or rccm's inverse of W0
+  // with its factorization.
   const bool exact = (cfg.solver.method == ContactMethod::Bipotential && cfg.solver.active_set &&
                       interface_.size() <= cfg.solver.active_set_max_nodes) ||
-                     (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2);
+                     (cfg.solver.method == ContactMethod::Newton && interface_.layout.dim == 2) ||
+                     cfg.solver.method == ContactMethod::Rccm;
   if (!compress_W0_)
     require_memory((exact ? 5 : 2) * 8 * m * m, cfg.where(cfg.interfaces.front().path + ".boundary"),
                    std::to_string(interface_.size()) + " contact nodes (dense interface operators)",
