@@ -90,10 +90,8 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
   const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
   const std::vector<std::string> integrator_names = limit ? std::vector<std::string>{"rate-independent"} : integrators;
   if (limit && integrators != integrator_names) {
-    std::string asked;
-    for (const std::string& name : integrators) asked += (asked.empty() ? "" : ", ") + name;
     std::fprintf(stderr, "rccm: note: alpha = 0 on every interface: the rate-independent limit runs once for the "
-                         "integrators asked (%s)\n", asked.c_str());
+                         "integrators asked (%s)\n", comma_list(integrators).c_str());
   }
   for (const std::string& name : integrator_names)
     for (const std::string& solver : solver_names) {

@@ -1,5 +1,7 @@
 #include "rccm/base/config.hpp"
 
+#include "rccm/base/format.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
@@ -150,9 +152,7 @@ std::string differing_settings(const std::string& parts, const std::string& othe
     if (b[name] != digest) names.push_back(name);
   for (const auto& [name, digest] : b)
     if (a.count(name) == 0) names.push_back(name);
-  std::string list;
-  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
-  return list.empty() ? "" : list + (names.size() == 1 ? " differs" : " differ");
+  return names.empty() ? "" : comma_list(names) + (names.size() == 1 ? " differs" : " differ");
 }
 
 std::string Config::controls_fingerprint() const {
@@ -228,7 +228,7 @@ std::vector<std::string> unused_settings(const Config& cfg) {
       {"solver.relaxation", bipotential && !gauss_seidel, solver, "the \"bipotential\" solver's Jacobi form"},
       {"solver.active_set", bipotential, solver, "the \"bipotential\" solver"},
       {"solver.active_set_max_nodes", bipotential && S.active_set, active_set, "the \"bipotential\" solver's exact step"},
-      {"solver.compressed_min_nodes", bipotential || (S.method == ContactMethod::Newton && cfg.mesh.dim() == 2), solver,
+      {"solver.compressed_min_nodes", S.reads_compressed_W0(cfg.mesh.dim()), solver,
        "the \"bipotential\" solver and the 2D \"newton\" solver"},
       {"integrator.scheme", m == Method::Arkode, integrator, "\"arkode\""},
       {"integrator.table", m == Method::Arkode, integrator, "\"arkode\""},

@@ -10,4 +10,10 @@ std::string fmt(const char* format, double v) {
   return buf;
 }
 
+std::string comma_list(const std::vector<std::string>& names) {
+  std::string list;
+  for (const std::string& name : names) list += (list.empty() ? "" : ", ") + name;
+  return list;
+}
+
 }  // namespace rccm

@@ -72,13 +72,13 @@ void Recorder::open(const Model& model) {
   result_.pairs_per_interface.assign(cfg_.interfaces.size(), 0);
   for (const ContactPair& c : model.interface().pairs) ++result_.pairs_per_interface[c.law];
   // Doubtful geometry said before the first step: a user can stop a long run at once, and a
-  // run that fails has said it (the report's warnings repeat it at the end).
-  if (options_.write_files)
+  // run that fails has said it (the report's warnings repeat it at the end). Then the settings
+  // this run's methods do not read: said, but no warning of the results (a sweep or a
+  // comparison runs other methods on purpose).
+  if (options_.write_files) {
     for (const std::string& note : model.notes()) say_note(note);
-  // Settings this run's methods do not read: said, but no warning of the results (a sweep or
-  // a comparison runs other methods on purpose).
-  if (options_.write_files)
     for (const std::string& note : unused_settings(cfg_)) say_note(note);
+  }
   if (options_.step_log)
     *options_.step_log << "# " << cfg_.file << ": " << result_.nodes << " nodes, " << result_.cells << " cells, "
                        << result_.contact_nodes << " contact nodes; integrator " << method_name(cfg_.integrator.method)

@@ -146,6 +146,11 @@ struct SolverParams {
   int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, 2D newton)
   bool springs_follow_beta = false;  // K0 factorized and W0 condensed anew when its springs lag beta (default: 3D only; docs/MODEL.md s4)
   LinearSolverParams linear;        // the body's K0 solves (setup: W0, load responses; body state at output)
+  /// Whether the contact solver works on a compressed W0 (bipotential; Newton in 2D): where
+  /// compressed_min_nodes applies.
+  bool reads_compressed_W0(int dim) const {
+    return method == ContactMethod::Bipotential || (method == ContactMethod::Newton && dim == 2);
+  }
 };
 
 /// How beta evolves: integrated by ARKODE or explicit Euler, the rate-independent limit,
