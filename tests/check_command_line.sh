@@ -109,10 +109,16 @@ check; "$rccm" run "$b1" -q --set interface.g0=0.5 --set integrator.max_steps=50
 check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=0 -o "$work/alpha0" >/dev/null 2>"$work/err" \
   || fail "alpha = 0: $(cat "$work/err")"
 grep -q "integrator: rate-independent" "$work/alpha0/report.txt" 2>/dev/null || fail "alpha = 0 did not run rate-independent"
+# ... but contact-only holds beta at beta0, alpha or not (B1's beta0 = 1: the adhesive springs stay).
+check; "$rccm" run "$b1" -q --set integrator.method=contact-only --set interface.alpha=0 -o "$work/held0" >/dev/null 2>"$work/err" \
+  && grep -q "integrator: contact-only" "$work/held0/report.txt" && [ "$(awk -F, 'NR > 1 && $7 != 1' "$work/held0/interface_t10.csv" | wc -l)" = 0 ] \
+  || fail "contact-only at alpha = 0: $(cat "$work/err") $(grep integrator: "$work/held0/report.txt")"
 # ... and in `compare` once, saying so for the integrators it stands for.
 check; "$rccm" compare "$b1" --integrators euler,arkode "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?
+check; "$rccm" compare "$b1" --integrators euler,arkode,contact-only "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?
 [ "$rc" -eq 0 ] && grep -qF "note: alpha = 0 on every interface: the rate-independent limit runs once for the integrators asked (euler, arkode)" "$work/err" \
-  || fail "compare at alpha = 0: exit $rc, $(cat "$work/err")"
+  && grep -q "^contact-only, 20 fixed steps" "$work/out" && grep -q "^rate-independent, 20 fixed steps" "$work/out" \
+  || fail "compare at alpha = 0: exit $rc, $(cat "$work/err") $(cat "$work/out")"
 
 # A setting the run's methods do not read: said before the first step, not a warning of the report.
 check; "$rccm" run "$b1" -q "${short[@]}" --set integrator.rtol=1e-7 -o "$work/unread" >/dev/null 2>"$work/err"; rc=$?
@@ -203,7 +209,7 @@ check; grep "plots: tools/plot --overlay" "$work/sweep.out" | grep -q "alpha=1" 
 # interrupted case's --restart suggested, summary.csv untouched.
 cp "$out/summary.csv" "$work/summary.before"
 "$rccm" sweep "$b1" -j 1 --set integrator.rtol=1e-10 --set interface.alpha=1,2,3 -o "$out" >/dev/null 2>"$work/err"; rc=$?
-check; [ "$rc" -eq 2 ] && grep -q "sweep: case alpha=1: .*already holds the results of a run (history.csv); give --restart $out/alpha=1 to go on with it" "$work/err" \
+check; [ "$rc" -eq 2 ] && grep -q "sweep: case alpha=1: the sweep's directory $out: '$out/alpha=1' already holds the results of a run (history.csv); give --restart $out/alpha=1 to go on with it" "$work/err" \
   || fail "sweep again: exit $rc, $(cat "$work/err")"
 cmp -s "$out/summary.csv" "$work/summary.before" || fail "sweep again: summary.csv changed"
 grep -q -- "(--restart $out goes on with the sweep" "$work/err" || fail "sweep again: no --restart of the sweep suggested: $(cat "$work/err")"
@@ -221,7 +227,8 @@ check; grep -q "^rccm: alpha=1: note: .*interface.normal: .* is 5.71 degrees fro
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.alpha=1,2 -o "$work/sw2" >"$work/sw2.out" 2>&1 || fail "sweep sw2: $(cat "$work/sw2.out")"
 check; grep -q "plots: tools/plot --overlay '$work/sw2' '$work/sw2/alpha=1' '$work/sw2/alpha=2'$" "$work/sw2.out" || fail "sweep overlay command: $(tail -1 "$work/sw2.out")"
 "$rccm" run "$b1" -q "${short[@]}" --set interface.alpha=1 -o "$work/sw2/alpha=1" >/dev/null 2>"$work/err"; rc=$?
-check; [ "$rc" -eq 2 ] && ! grep -q -- "--restart" "$work/err" && grep -q "give --force to overwrite them, or another directory (-o DIR)" "$work/err" \
+check; [ "$rc" -eq 2 ] && ! grep -q -- "--restart" "$work/err" && grep -q "^rccm: error: -o: '$work/sw2/alpha=1' already holds" "$work/err" \
+  && grep -q "give --force to overwrite them, or another directory (-o DIR)" "$work/err" \
   || fail "a finished run's directory: exit $rc, $(cat "$work/err")"
 # Another sweep into that directory, of other cases: refused, the earlier summary untouched.
 cp "$work/sw2/summary.csv" "$work/summary.before"

@@ -76,7 +76,7 @@ for _ in $(seq 100); do [ -s "$out/history.csv" ] && break; sleep 0.1; done
 "$rccm" run "$src/config/b1.cfg" -q --force --set "output.directory=\"$out\"" 2>"$work/err"; rc=$?
 kill -s INT "$pid"; wait "$pid"
 [ "$rc" -eq 2 ] || fail "concurrent run: exit $rc, want 2"
-grep -q "another rccm run is writing" "$work/err" || fail "concurrent run: $(cat "$work/err")"
+grep -q "^rccm: error: --set output.directory: another rccm run is writing" "$work/err" || fail "concurrent run: $(cat "$work/err")"
 
 # 5. Kill -9 halfway, restart, compare with an uninterrupted run.
 euler=(--set integrator.method=euler --set time.steps=20000 --set output.checkpoint_steps=1000)

@@ -85,14 +85,19 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
   std::vector<CompareCase> cases;
   const std::vector<std::string> solver_names =
       solvers.empty() ? std::vector<std::string>{contact_method_name(cfg.solver.method)} : solvers;
-  // alpha = 0 on every interface: the rate-independent limit, whatever the integrators asked
-  // (as `run` and `sweep`); the viscous integrators need alpha > 0 everywhere.
+  // alpha = 0 on every interface: the rate-independent limit in place of the viscous
+  // integrators asked (as `run` and `sweep`: rate_independent_limit), run once.
   const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
-  const std::vector<std::string> integrator_names = limit ? std::vector<std::string>{"rate-independent"} : integrators;
-  if (limit && integrators != integrator_names) {
-    std::fprintf(stderr, "rccm: note: alpha = 0 on every interface: the rate-independent limit runs once for the "
-                         "integrators asked (%s)\n", comma_list(integrators).c_str());
+  std::vector<std::string> integrator_names, limited;  // each once; at alpha = 0, the method that runs
+  for (const std::string& name : integrators) {
+    const std::string runs = limit ? method_name(rate_independent_limit(integrator_of(name))) : name;
+    if (limit && runs == "rate-independent") limited.push_back(name);
+    if (std::find(integrator_names.begin(), integrator_names.end(), runs) == integrator_names.end())
+      integrator_names.push_back(runs);
   }
+  if (!limited.empty() && limited != std::vector<std::string>{"rate-independent"})
+    std::fprintf(stderr, "rccm: note: alpha = 0 on every interface: the rate-independent limit runs once for the "
+                         "integrators asked (%s)\n", comma_list(limited).c_str());
   for (const std::string& name : integrator_names)
     for (const std::string& solver : solver_names) {
       CompareCase c{solvers.size() > 1 ? name + "/" + solver : name, cfg, {}};

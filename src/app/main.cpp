@@ -248,7 +248,8 @@ int main(int argc, char** argv) {
     // A restart writes where the run it continues wrote; -o is output.directory.
     if (!restart_dir.empty()) output_dir = restart_dir;
     if (!output_dir.empty()) overrides.push_back(rccm::string_override("output.directory", output_dir));
-    const rccm::Config cfg = rccm::load_config(config_file, overrides);
+    rccm::Config cfg = rccm::load_config(config_file, overrides);
+    if (!output_dir.empty()) cfg.origins["output.directory"] = restart_dir.empty() ? "-o" : "--restart " + restart_dir;
     if (*run) {
       rccm::RunOptions options;
       options.step_log = verbose && root ? &std::cout : nullptr;

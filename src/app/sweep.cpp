@@ -151,6 +151,7 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
     std::vector<std::string> all = c.overrides;
     all.push_back(string_override("output.directory", directory + "/" + c.name));
     c.config = load_config(config_file, all);
+    c.config.origins["output.directory"] = "the sweep's directory " + directory;
   }
   return cases;
 }

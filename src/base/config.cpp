@@ -168,9 +168,11 @@ std::string Config::controls_fingerprint() const {
 }
 
 std::string Config::where(const std::string& path) const {
+  const auto origin = origins.find(path);
+  if (origin != origins.end()) return origin->second;
   const auto it = lines.find(path);
   if (it == lines.end()) return file + ": " + path;  // a default, or a setting read before the lines were kept
-  if (it->second == 0) return path == "output.directory" ? "-o / --set " + path : "--set " + path;  // on the command line
+  if (it->second == 0) return "--set " + path;  // on the command line
   return file + ":" + std::to_string(it->second) + ": " + path;
 }
 
@@ -191,6 +193,10 @@ const char* method_name(Method m) {
     case Method::ContactOnly: return "contact-only";
   }
   return "";
+}
+
+Method rate_independent_limit(Method m) {
+  return m == Method::ContactOnly ? m : Method::RateIndependent;
 }
 
 const char* contact_method_name(ContactMethod m) {

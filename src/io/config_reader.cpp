@@ -830,11 +830,12 @@ OutputParams read_output(const Reader& r, const Setting& root, double T, int dim
 
 /// Rules across sections.
 void check_consistency(const Reader& r, const Setting& root, Config& c) {
-  // alpha = 0 is the rate-independent limit (docs/MODEL.md s3), whatever integrator.method
-  // says (a viscous method needs alpha > 0): one rule for `rccm run`, `sweep` and `compare`.
+  // alpha = 0 is the rate-independent limit (docs/MODEL.md s3), whatever viscous integrator
+  // integrator.method names (they need alpha > 0; contact-only holds beta and reads no
+  // alpha): one rule for `rccm run`, `sweep` and `compare` (rate_independent_limit).
   std::size_t zero = 0;
   for (const InterfaceParams& p : c.interfaces) zero += p.alpha == 0;
-  if (zero == c.interfaces.size()) c.integrator.method = Method::RateIndependent;
+  if (zero == c.interfaces.size()) c.integrator.method = rate_independent_limit(c.integrator.method);
   for (const InterfaceParams& p : c.interfaces) {
     const Setting& in = root.lookup(p.path);
     if (zero > 0 && zero < c.interfaces.size() && p.alpha == 0)

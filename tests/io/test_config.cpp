@@ -90,9 +90,11 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
                     Catch::Contains(":8: output.directory: must be a string (got an integer); --set or -o replaces it"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"solver.form=5"}),
                     Catch::Contains("--set solver.form: must be a string (got an integer)"));  // no such setting in the file
-  // -o gives output.directory as an override: a message on the directory names both ways.
-  CHECK(test::config_from_text(good, {"output.directory=\"/tmp/x\""}).where("output.directory") ==
-        "-o / --set output.directory");
+  // A --set the user typed is named so; -o, --restart and a sweep's case directory by their origin.
+  Config dir_cfg = test::config_from_text(good, {"output.directory=\"/tmp/x\""});
+  CHECK(dir_cfg.where("output.directory") == "--set output.directory");
+  dir_cfg.origins["output.directory"] = "--restart /tmp/x";
+  CHECK(dir_cfg.where("output.directory") == "--restart /tmp/x");
 }
 
 TEST_CASE("the exact step is on by default in 2D, off in 3D, and either way when set", "[config]") {

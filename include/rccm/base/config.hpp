@@ -199,6 +199,9 @@ struct Config {
 
   std::string file;                  // path it was read from
   std::map<std::string, int> lines;  // line of each setting in the file ("interface.g0"), 0 for --set
+  /// How a setting given outside the file came, where it was not a --set the user typed:
+  /// output.directory from "-o", "--restart DIR" or a sweep's case directory.
+  std::map<std::string, std::string> origins;
   /// Fingerprint of every parsed value that defines the problem and its time grid (all but
   /// output.directory, checkpoint_steps, every, and the numerical controls a failure message
   /// asks to change; fingerprint()): a checkpoint restarts only a run of the same settings,
@@ -215,7 +218,7 @@ struct Config {
 
   /// "file:line: path" for messages about a setting found wrong after reading (a list of
   /// the wrong length once the mesh is known, an unwritable directory); "--set path" for one
-  /// given on the command line ("-o / --set output.directory": -o sets it too).
+  /// given on the command line, or its origin ("-o") where it has one.
   std::string where(const std::string& path) const;
 
   MeshParams mesh;
@@ -230,6 +233,10 @@ struct Config {
 
 /// The config name of a method ("arkode", "euler", "rate-independent", "contact-only").
 const char* method_name(Method m);
+
+/// The method that runs in place of `m` when alpha = 0 on every interface: rate-independent for
+/// the viscous methods (they need alpha > 0), contact-only as it is (it holds beta at beta0).
+Method rate_independent_limit(Method m);
 
 /// The config name of a contact method ("bipotential", "rccm", "newton").
 const char* contact_method_name(ContactMethod m);
