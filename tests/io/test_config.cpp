@@ -1,6 +1,7 @@
 // The config loader: every bad file of tests/bad/ is refused with the message its first
 // line expects ("# expect: ..."), which names the line and the setting.
 #include "helpers.hpp"
+#include "rccm/app/simulation.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/model/model.hpp"
 #include "rccm/io/output_directory.hpp"
@@ -145,7 +146,7 @@ time = { T = 1.0; };
   fs::remove_all(dir);
 }
 
-TEST_CASE("a setting the run's methods do not read is noted with its line and who reads it", "[config]") {
+TEST_CASE("a setting the run's methods do not read is noted with its line and who reads it and changes nothing", "[config]") {
   // Each setting, with overrides under which this run reads it and overrides under which it does not.
   struct Case {
     std::string setting;
@@ -181,6 +182,19 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
         INFO(c.setting << (read ? " read" : " unread") << " with " << (overrides.size() > 1 ? overrides.front() : "defaults"));
         CHECK(notes.size() == (read ? 0u : 1u));
         if (!read && !notes.empty()) CHECK_THAT(notes[0], Catch::StartsWith("--set " + name + ": not read by "));
+        if (!read) {  // and indeed changes nothing: the run with it and without it, to the last bit
+          const RunResult with = Simulation(test::config_from_text(good, overrides), {}).run();
+          overrides.pop_back();
+          const RunResult without = Simulation(test::config_from_text(good, overrides), {}).run();
+          REQUIRE(with.snapshots.size() == without.snapshots.size());
+          CHECK(with.steps.size() == without.steps.size());
+          CHECK(with.solves.sweeps == without.solves.sweeps);
+          for (std::size_t k = 0; k < with.snapshots.size(); ++k) {
+            CHECK(with.snapshots[k].beta == without.snapshots[k].beta);
+            CHECK(with.snapshots[k].Rbar == without.snapshots[k].Rbar);
+            CHECK(with.snapshots[k].u == without.snapshots[k].u);
+          }
+        }
       }
   }
   // The rate-independent limit chosen by alpha = 0 says so.
