@@ -124,7 +124,7 @@ energy = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(d
 problems = []
 for d in sys.argv[2:]:
     rows = list(csv.DictReader(open(os.path.join(d, "curves.csv"))))
-    independent = "released_in_snap_through" in json.load(open(os.path.join(d, "report.json")))["energy"]
+    independent = "snap_through_and_step_error" in json.load(open(os.path.join(d, "report.json")))["energy"]
     column = "imbalance [N mm]" if independent else "damage dissipation [N mm]"
     want = [float(r[column]) for r in rows]
     style = "--" if independent else "-"

@@ -332,8 +332,8 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
     // unstable Euler, a doubtful interface): a complete row is not a trusted one.
     std::string message = c.error;
     if (complete && c.config.integrator.method == Method::RateIndependent)  // as report.txt says it
-      message = "rate-independent (alpha = 0): the imbalance is the work released in snap-through, no error "
-                "(docs/MODEL.md s3)";
+      message = "rate-independent (alpha = 0): the imbalance is the work released in snap-throughs and the steps' "
+                "error (docs/MODEL.md s3)";
     if (complete)
       for (const std::string& w : r.warnings) message += (message.empty() ? "warning: " : "; warning: ") + w;
     message = one_line(message);

@@ -222,7 +222,7 @@ TEST_CASE("a sweep's complete case that warned says so in its row", "[sweep]") {
   fs::remove_all(dir);
 }
 
-TEST_CASE("a sweep's rate-independent case says its imbalance is released in snap-through", "[sweep]") {
+TEST_CASE("a sweep's rate-independent case says its imbalance is released in snap-throughs and the steps' error", "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep_snap";
   fs::remove_all(dir);
   fs::create_directories(dir);
@@ -241,7 +241,7 @@ TEST_CASE("a sweep's rate-independent case says its imbalance is released in sna
   CHECK(std::stod(summary.rows.at(0).at(imbalance)) > 0.5);
   CHECK(std::stod(summary.rows.at(1).at(imbalance)) < 1e-2);
   CHECK_THAT(summary.rows.at(0).back(), Catch::StartsWith("rate-independent (alpha = 0): the imbalance is the work "
-                                                          "released in snap-through"));
+                                                          "released in snap-throughs and the steps' error"));
   CHECK(summary.rows.at(1).back().empty());
   fs::remove_all(dir);
 }
