@@ -39,23 +39,35 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         << distance(best) << " mm from the nearest " << what;
       throw InputError(m.str());
     }
-    // Two nodes at that point (two bodies glued there, each with its own nodes): which one the
-    // point means is the user's to say.
+    // Two nodes at that point (two bodies glued there, each with its own nodes): the node of the
+    // body the point lies in; on the boundary they share, which one it means is the user's to say.
+    std::vector<std::size_t> shared{best};
     for (std::size_t j = 0; j < candidates.size(); ++j)
-      if (j != best && (mesh.nodes[candidates[j]] - mesh.nodes[candidates[best]]).norm() <= 1e-9 * reach) {
-        const auto body = [&](int node) {
-          for (std::size_t c = 0; c < mesh.cells.size(); ++c)
-            if (std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end())
-              return "body '" + mesh.body_names[mesh.cell_body[c]] + "'";
-          return std::string("no body");
+      if (j != best && (mesh.nodes[candidates[j]] - mesh.nodes[candidates[best]]).norm() <= 1e-9 * reach) shared.push_back(j);
+    if (shared.size() > 1) {
+      const auto body_of = [&](int node) {
+        for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+          if (std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end()) return mesh.cell_body[c];
+        return -1;
+      };
+      const std::vector<int> holding = mesh.bodies_holding(p);
+      const auto in = std::find_if(shared.begin(), shared.end(), [&](std::size_t j) {
+        return holding.size() == 1 && body_of(candidates[j]) == holding[0];
+      });
+      if (in == shared.end()) {
+        const auto name = [&](std::size_t j) {
+          const int b = body_of(candidates[j]);
+          return b < 0 ? std::string("no body") : "body '" + mesh.body_names[b] + "'";
         };
         std::ostringstream m;
         m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
-          << point(given, mesh.dim) << " is as near to mesh node " << candidates[best] << " of " << body(candidates[best])
-          << " as to mesh node " << candidates[j] << " of " << body(candidates[j])
-          << " (they share that point); move the point a little into the body you mean";
+          << point(given, mesh.dim) << " is as near to mesh node " << candidates[shared[0]] << " of " << name(shared[0])
+          << " as to mesh node " << candidates[shared[1]] << " of " << name(shared[1]) << " (they share that point), and lies "
+          << (holding.empty() ? "in neither body" : "on the boundary they share") << "; move it into the body you mean";
         throw InputError(m.str());
       }
+      best = *in;
+    }
     out.push_back(static_cast<int>(best));
   }
   return out;

@@ -171,6 +171,30 @@ time = { T = 1.0; };
     CHECK(beta0[i] == (m.mesh().nodes[m.interface().pairs[i].node].x() < 2.5 ? 0.0 : 1.0));
 }
 
+TEST_CASE("a probe beside the glue line probes the body it lies in, though the node there is shared", "[bodies]") {
+  // (5, 1.9) in the lower block and (5, 2.1) in the upper one are nearest to the glue line's
+  // point (5, 2), where each block has its own node: each probe takes its own block's.
+  const Model m = test::make_model(two_blocks(R"(material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "upper_bottom"; opposite = "lower_top"; Cn = 1e3; Ct = 1e3; w = 1.0; mu = 0.3; };
+loads = ( { node_set = "bottom"; type = "displacement"; component = "y"; value = 0.0; },
+          { node_set = "bottom"; type = "displacement"; component = "x"; value = 0.0; } );
+time = { T = 1.0; };
+output = { probes = ( { name = "below"; point = [5.0, 1.9]; }, { name = "above"; point = [5.0, 2.1]; } ); };
+)"));
+  const Mesh& mesh = m.mesh();
+  const auto body_of = [&](int node) {
+    for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+      if (std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end())
+        return mesh.body_names[mesh.cell_body[c]];
+    return std::string();
+  };
+  REQUIRE(m.probes().size() == 2);
+  for (int k : {0, 1}) {
+    CHECK((mesh.nodes[m.probes()[k]] - Eigen::Vector3d(5, 2, 0)).norm() < 1e-9);  // gmsh's coordinates
+    CHECK(body_of(m.probes()[k]) == (k == 0 ? "lower" : "upper"));
+  }
+}
+
 TEST_CASE("bodies and body-body interfaces that cannot be are refused, naming the setting and the node", "[bodies]") {
   const std::string rest = R"(
 loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = 0.1; },

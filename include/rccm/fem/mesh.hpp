@@ -83,6 +83,10 @@ struct Mesh {
   /// Half the length of each adjacent edge in `set`, mm (in the plane of the mesh); in 3D the
   /// tributary area, mm^2 (what a debonded measure sums).
   std::vector<double> tributary_lengths(const std::vector<int>& set) const;
+
+  /// The bodies (indices in body_names) with a cell that holds `x`, on its boundary too (to
+  /// 1e-9 of the cell's size): one where x is inside a body, two on the boundary two share.
+  std::vector<int> bodies_holding(const Eigen::Vector3d& x) const;
 };
 
 }  // namespace rccm
