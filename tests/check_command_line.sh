@@ -111,7 +111,7 @@ check; "$rccm" run "$b1" -q --set integrator.method=euler --set interface.alpha=
 grep -q "integrator: rate-independent" "$work/alpha0/report.txt" 2>/dev/null || fail "alpha = 0 did not run rate-independent"
 # ... but contact-only holds beta at beta0, alpha or not (B1's beta0 = 1: the adhesive springs stay).
 check; "$rccm" run "$b1" -q --set integrator.method=contact-only --set interface.alpha=0 -o "$work/held0" >/dev/null 2>"$work/err" \
-  && grep -q "integrator: contact-only" "$work/held0/report.txt" && [ "$(awk -F, 'NR > 1 && $7 != 1' "$work/held0/interface_t10.csv" | wc -l)" = 0 ] \
+  && grep -qx "integrator: contact-only (beta held at beta0)" "$work/held0/report.txt" && [ "$(awk -F, 'NR > 1 && $7 != 1' "$work/held0/interface_t10.csv" | wc -l)" = 0 ] \
   || fail "contact-only at alpha = 0: $(cat "$work/err") $(grep integrator: "$work/held0/report.txt")"
 # ... and in `compare` once, saying so for the integrators it stands for.
 check; "$rccm" compare "$b1" --integrators euler,arkode "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?

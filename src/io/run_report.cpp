@@ -44,7 +44,10 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   if (cfg.integrator.method == Method::Arkode)
     out << " (" << (cfg.integrator.scheme == ArkodeScheme::Dirk ? "dirk" : "erk") << ", rtol " << cfg.integrator.rtol
         << ", atol " << cfg.integrator.atol << ")";
-  for (const InterfaceParams& p : cfg.interfaces) out << "; " << p.path << ".alpha = " << p.alpha << " N s/mm";
+  if (cfg.integrator.method == Method::ContactOnly)
+    out << " (beta held at beta0)";
+  else
+    for (const InterfaceParams& p : cfg.interfaces) out << "; " << p.path << ".alpha = " << p.alpha << " N s/mm";
   out << "\n";
   if (r.stopped.empty())
     out << "status: complete (t = " << cfg.time.T << " s)\n\n";
