@@ -270,3 +270,36 @@ TEST_CASE("K0's springs following beta change no result of B1 or the 3D corner p
     if (std::string(c.file) == "corner-peel.cfg") CHECK(b.result.solves.sweeps < 0.8 * a.result.solves.sweeps);
   }
 }
+
+TEST_CASE("the rate-independent limit under friction: where the plain fixed point cycles, the consistent beta", "[physics]") {
+  // A block pressed down (10 MPa) and sheared (0 to 3 MPa, side tractions balancing it: a
+  // uniform stress), mu = 0.4, alpha = 0. At t = 0.29 s the plain iteration cycled between
+  // beta = 1 (bonded: u_t = tau / Ct) and 0.97 (where mubar = mu (1 - beta) makes it stick
+  // and strain less): beta = w / (Ct u_t^2) has its solution between, where the map's slope is
+  // below -1 (the audit's 3D case, here in 2D).
+  const Config cfg = test::config_from_text(R"(
+mesh = { size = [4.0, 1.0]; nx = 2; ny = 1; element = "Q4"; };
+material = { E = 1000.0; nu = 0.0; };
+interface = { boundary = "bottom"; Cn = 100.0; Ct = 100.0; w = 0.005; alpha = 0.0; mu = 0.4; beta0 = 1.0; };
+loads = ( { node_set = "top"; type = "pressure"; value = 10.0; },
+          { node_set = "top"; type = "traction"; component = "x"; table = ((0.0, 0.0), (1.0, 3.0)); },
+          { node_set = "right"; type = "traction"; component = "y"; table = ((0.0, 0.0), (1.0, 3.0)); },
+          { node_set = "left"; type = "traction"; component = "y"; table = ((0.0, 0.0), (1.0, -3.0)); } );
+time = { T = 1.0; steps = 100; };
+output = { times = [0.29, 0.5]; };
+)");
+  const RunResult r = Simulation(cfg, {}).run();
+  REQUIRE(r.stopped.empty());
+  REQUIRE(r.snapshots.size() == 3);
+  for (const Snapshot& s : r.snapshots) {
+    INFO("t = " << s.t);
+    for (Eigen::Index i = 0; i < s.beta.size(); ++i) {
+      const double ut = s.u[2 * i], un = s.u[2 * i + 1], Rt = s.Rbar[2 * i], Rn = s.Rbar[2 * i + 1];
+      // consistent: beta = min(1, w / (Cn u_n^2 + Ct u_t^2)), to the fixed point's tolerance
+      CHECK(s.beta[i] == Approx(std::min(1.0, 0.005 / (100 * un * un + 100 * ut * ut))).epsilon(1e-6));
+      CHECK(s.beta[i] < 1.0);
+      CHECK(std::abs(Rt) <= 0.4 * (1 - s.beta[i]) * Rn * (1 + 1e-8) + 1e-12);  // in the Coulomb cone
+    }
+  }
+  CHECK(r.snapshots[2].beta.maxCoeff() < r.snapshots[0].beta.minCoeff());  // beta falls as the shear grows
+}

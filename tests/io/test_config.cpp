@@ -156,7 +156,7 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
       {"solver.over_relaxation=1.2", {{"solver.method=\"rccm\""}}, {{}, {"solver.method=\"newton\""}}},
       {"solver.local_iterations=10", {{}, {"solver.method=\"newton\""}}, {{"solver.method=\"rccm\""}, {"solver.form=\"jacobi\""}}},
       {"solver.form=\"gauss-seidel\"", {{}}, {{"solver.method=\"newton\""}}},
-      {"solver.anderson=3", {{}}, {{"solver.form=\"jacobi\""}, {"solver.method=\"newton\""}}},
+      {"solver.anderson=0", {{}}, {{"solver.form=\"jacobi\""}, {"solver.form=\"jacobi\"", "solver.active_set=false"}, {"solver.method=\"newton\""}}},
       {"solver.relaxation=0.5", {{"solver.form=\"jacobi\""}}, {{}, {"solver.method=\"rccm\""}}},
       {"solver.active_set=true", {{}}, {{"solver.method=\"newton\""}}},
       {"solver.active_set_max_nodes=100", {{}}, {{"solver.method=\"rccm\""}, {"solver.active_set=false"}}},

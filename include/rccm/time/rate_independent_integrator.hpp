@@ -1,9 +1,11 @@
 // The rate-independent limit alpha -> 0 (docs/MODEL.md s3):
 //   beta_{n+1} = min(beta_n, w / (Cn u_n^2 + Ct u_t^2)) with u from the contact solve at
-//   (t_{n+1}, beta_{n+1}), made consistent by a fixed point in each step. Starting from
-//   beta_n the iterates decrease monotonically to the largest consistent beta. The fixed
-//   point cannot resolve beta below the contact solve's own accuracy: its tolerance is at
-//   least 100 times the solver's.
+//   (t_{n+1}, beta_{n+1}), made consistent by a fixed point in each step. Without friction,
+//   starting from beta_n the iterates decrease monotonically to the largest consistent beta.
+//   With friction a lower beta may stick and strain less (mubar = mu (1 - beta) grows), and
+//   the plain iteration can cycle: each update is then relaxed, halved at every turn of a
+//   node's update. The fixed point cannot resolve beta below the contact solve's own
+//   accuracy: its tolerance is at least 100 times the solver's.
 #pragma once
 
 #include "rccm/time/integrator.hpp"
