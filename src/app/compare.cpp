@@ -117,35 +117,42 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
 void print_comparison(std::ostream& out, const std::vector<CompareCase>& cases) {
   const std::vector<int>& watched = cases.front().result.watched;
   char buf[256];
-  auto row = [&](const std::string& label, auto&& cell) {
+  // Columns as wide as the longest case's label and two spaces (a label runs into none).
+  int width = 20;
+  for (const CompareCase& c : cases) width = std::max(width, static_cast<int>(c.label.size()) + 2);
+  const auto cell = [&](const char* format, double v) {
+    const std::string text = fmt(format, v);
+    return std::string(std::max(0, width - static_cast<int>(text.size())), ' ') + text;
+  };
+  auto row = [&](const std::string& label, auto&& value_of) {
     std::snprintf(buf, sizeof buf, "%-34s", label.c_str());
     out << buf;
-    for (const CompareCase& c : cases) out << cell(c);
+    for (const CompareCase& c : cases) out << value_of(c);
     out << "\n";
   };
   row("", [&](const CompareCase& c) {
-    std::snprintf(buf, sizeof buf, "%20s", c.label.c_str());
+    std::snprintf(buf, sizeof buf, "%*s", width, c.label.c_str());
     return std::string(buf);
   });
   const std::vector<Snapshot>& ref = cases.front().result.snapshots;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     for (std::size_t w = 0; w < watched.size(); ++w)
       row("beta at " + cases.front().config.output.watch[w].name + ", t = " + fmt("%g", ref[k].t),
-          [&](const CompareCase& c) { return fmt("%20.6e", c.result.snapshots[k].beta[watched[w]]); });
+          [&](const CompareCase& c) { return cell("%.6e", c.result.snapshots[k].beta[watched[w]]); });
     row("max |beta - " + cases.front().label + "|, t = " + fmt("%g", ref[k].t), [&](const CompareCase& c) {
-      return fmt("%20.3e", (c.result.snapshots[k].beta - ref[k].beta).cwiseAbs().maxCoeff());
+      return cell("%.3e", (c.result.snapshots[k].beta - ref[k].beta).cwiseAbs().maxCoeff());
     });
   }
-  row("steps", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.steps); });
-  row("rejected steps", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.rejected); });
-  row("RHS evaluations", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.rhs_evaluations); });
-  row("contact solves (with commits)", [&](const CompareCase& c) { return fmt("%20.0f", c.result.solves.contact_solves); });
-  row("Newton / fixed-point iterations", [&](const CompareCase& c) { return fmt("%20.0f", c.result.integrator.newton_iterations); });
+  row("steps", [&](const CompareCase& c) { return cell("%.0f", c.result.integrator.steps); });
+  row("rejected steps", [&](const CompareCase& c) { return cell("%.0f", c.result.integrator.rejected); });
+  row("RHS evaluations", [&](const CompareCase& c) { return cell("%.0f", c.result.integrator.rhs_evaluations); });
+  row("contact solves (with commits)", [&](const CompareCase& c) { return cell("%.0f", c.result.solves.contact_solves); });
+  row("Newton / fixed-point iterations", [&](const CompareCase& c) { return cell("%.0f", c.result.integrator.newton_iterations); });
   row("contact iterations per solve", [&](const CompareCase& c) {
-    return fmt("%20.2f", double(c.result.solves.sweeps) / std::max(1L, c.result.solves.contact_solves));
+    return cell("%.2f", double(c.result.solves.sweeps) / std::max(1L, c.result.solves.contact_solves));
   });
-  row("contact iterations, max", [&](const CompareCase& c) { return fmt("%20.0f", c.result.solves.max_sweeps); });
-  row("wall time [s]", [&](const CompareCase& c) { return fmt("%20.3f", c.result.wall_seconds); });
+  row("contact iterations, max", [&](const CompareCase& c) { return cell("%.0f", c.result.solves.max_sweeps); });
+  row("wall time [s]", [&](const CompareCase& c) { return cell("%.3f", c.result.wall_seconds); });
   print_tables(out, cases);
   for (const CompareCase& c : cases)
     for (const std::string& w : c.result.warnings) out << c.label << ": warning: " << w << "\n";

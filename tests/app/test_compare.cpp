@@ -51,3 +51,20 @@ TEST_CASE("compare: alpha = 0 runs the rate-independent limit once per solver, a
   print_comparison(table, cases);
   CHECK_THAT(table.str(), Catch::Contains("rate-independent"));
 }
+
+TEST_CASE("compare: the table's columns stay apart however long the cases' labels", "[compare]") {
+  const Config cfg = load_config(test::shipped("b1.cfg"), {"time.T=0.5", "output.times=[0.25]"});
+  const std::vector<CompareCase> cases = run_comparison(cfg, {"contact-only"}, {"bipotential", "newton"}, 20);
+  std::ostringstream table;
+  print_comparison(table, cases);
+  std::istringstream lines(table.str());
+  std::string header, word;
+  std::getline(lines, header);
+  std::istringstream words(header);
+  std::vector<std::string> labels;
+  while (words >> word) labels.push_back(word);
+  CHECK(labels == std::vector<std::string>{"contact-only/bipotential", "contact-only/newton"});
+  std::string first;  // the first row's cells end under the labels
+  std::getline(lines, first);
+  CHECK(first.size() == header.size());
+}
