@@ -248,27 +248,30 @@ std::string resume_command(const std::string& rccm_path, const std::string& conf
 
 namespace {
 
-/// The load the summary reports: of the driven loads (a value other than 0 in some case), the
-/// one whose force peaks highest over the complete cases. A support (a displacement held at 0)
-/// may react at round-off only, or carry the driven load's force back (two bodies, a pile in
-/// its soil): its "peak" would read as the result, or tie with it. tools/plot --overlay draws
-/// the same load.
+/// The load the summary reports: of the driven loads (one whose value varies in some case: a
+/// ramp, a table), the one whose force peaks highest over the complete cases. A support (held
+/// at 0) may react at round-off only, or carry the driven load's force back (two bodies, a pile
+/// in its soil), and a load held at its value from the start (a confining pressure) peaks at
+/// t = 0: either would read as the result. Without a driven load, a held one other than 0;
+/// tools/plot --overlay draws the same load.
 std::size_t reported_load(const std::vector<SweepCase>& cases) {
-  const auto driven = [&](std::size_t k) {
+  const auto drive = [&](std::size_t k) {  // 2 varies, 1 held at a value other than 0, 0 held at 0
+    int level = 0;
     for (const SweepCase& c : cases)
-      if (k < c.config.loads.size())
-        for (double v : c.config.loads[k].amplitude.v)
-          if (v != 0) return true;
-    return false;
+      if (k < c.config.loads.size()) {
+        const std::vector<double>& v = c.config.loads[k].amplitude.v;
+        for (double x : v) level = std::max(level, x != v.front() ? 2 : x != 0 ? 1 : 0);
+      }
+    return level;
   };
-  bool any_driven = false;
-  for (std::size_t k = 0; k < cases.front().config.loads.size(); ++k) any_driven = any_driven || driven(k);
+  int top = 0;
+  for (std::size_t k = 0; k < cases.front().config.loads.size(); ++k) top = std::max(top, drive(k));
   std::size_t load = 0;
   double largest = -1;
   for (const SweepCase& c : cases)
     if (c.status == CaseStatus::Complete)
       for (std::size_t k = 0; k < c.result.peak_force.size(); ++k)
-        if ((!any_driven || driven(k)) && std::abs(c.result.peak_force[k]) > largest)
+        if (drive(k) == top && std::abs(c.result.peak_force[k]) > largest)
           largest = std::abs(c.result.peak_force[k]), load = k;
   return load;
 }

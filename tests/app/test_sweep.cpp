@@ -201,6 +201,22 @@ TEST_CASE("a sweep reports the driven load's peak, not a support's that carries 
   }
   write_sweep_summary(table, dir.string(), axes, cases);
   CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L1 top_left.y [N]");
+  // A load held at its value from the start (a confining pressure, peaking at t = 0) beside a
+  // driven one: the driven one, though the held one's force is larger (the audit's shear test
+  // reported its pressure); without a driven load, the held one, though a support's is larger.
+  for (SweepCase& c : cases) {
+    c.config.loads[0].amplitude.v.assign(c.config.loads[0].amplitude.v.size(), 5.0);
+    c.config.loads[1].amplitude.v = {0.0, 0.3};
+    c.result.peak_force = {-900.0, 650.0};
+  }
+  write_sweep_summary(table, dir.string(), axes, cases);
+  CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L1 top_left.y [N]");
+  for (SweepCase& c : cases) {
+    c.config.loads[1].amplitude.v.assign(c.config.loads[1].amplitude.v.size(), 0.0);
+    c.result.peak_force = {-100.0, 650.0};
+  }
+  write_sweep_summary(table, dir.string(), axes, cases);
+  CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L0 top_right.x [N]");
   fs::remove_all(dir);
 }
 
