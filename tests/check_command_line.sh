@@ -114,11 +114,15 @@ check; "$rccm" run "$b1" -q --set integrator.method=contact-only --set interface
   && grep -qx "integrator: contact-only (beta held at beta0)" "$work/held0/report.txt" && [ "$(awk -F, 'NR > 1 && $7 != 1' "$work/held0/interface_t10.csv" | wc -l)" = 0 ] \
   || fail "contact-only at alpha = 0: $(cat "$work/err") $(grep integrator: "$work/held0/report.txt")"
 # ... and in `compare` once, saying so for the integrators it stands for.
-check; "$rccm" compare "$b1" --integrators euler,arkode "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?
 check; "$rccm" compare "$b1" --integrators euler,arkode,contact-only "${short[@]}" --set interface.alpha=0 >"$work/out" 2>"$work/err"; rc=$?
 [ "$rc" -eq 0 ] && grep -qF "note: alpha = 0 on every interface: the rate-independent limit runs once for the integrators asked (euler, arkode)" "$work/err" \
   && grep -q "^contact-only, 20 fixed steps" "$work/out" && grep -q "^rate-independent, 20 fixed steps" "$work/out" \
   || fail "compare at alpha = 0: exit $rc, $(cat "$work/err") $(cat "$work/out")"
+
+# ... and a case whose run fails: named with its message, the others compared, exit 3.
+check; "$rccm" compare "$b1" --integrators arkode,euler "${short[@]}" --set integrator.max_steps=3 >"$work/out" 2>"$work/err"; rc=$?
+[ "$rc" -eq 3 ] && grep -q "^arkode: run failed: ARKODE stopped" "$work/out" && grep -q "^euler, 20 fixed steps" "$work/out" \
+  || fail "compare with a failing case: exit $rc, $(cat "$work/out" "$work/err")"
 
 # A setting the run's methods do not read: said before the first step, not a warning of the report.
 check; "$rccm" run "$b1" -q "${short[@]}" --set integrator.rtol=1e-7 -o "$work/unread" >/dev/null 2>"$work/err"; rc=$?

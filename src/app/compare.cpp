@@ -100,7 +100,7 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
                          "integrators asked (%s)\n", comma_list(limited).c_str());
   for (const std::string& name : integrator_names)
     for (const std::string& solver : solver_names) {
-      CompareCase c{solvers.size() > 1 ? name + "/" + solver : name, cfg, {}};
+      CompareCase c{solvers.size() > 1 ? name + "/" + solver : name, cfg, {}, {}};
       c.config.integrator.method = integrator_of(name);
       c.config.solver.method = solver_of(solver);
       if (name == "euler" && euler_steps > 0) c.config.time.steps = euler_steps;
@@ -110,11 +110,24 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
           throw InputError(cfg.where(p.path + ".alpha") + ": must be > 0 for integrator '" + name + "'");
       cases.push_back(std::move(c));
     }
-  for (CompareCase& c : cases) c.result = Simulation(c.config).run();
+  for (CompareCase& c : cases) {
+    try {
+      c.result = Simulation(c.config).run();
+    } catch (const SolveError& e) {  // a method that cannot take the problem is a result too
+      c.failure = e.what();
+    }
+  }
   return cases;
 }
 
-void print_comparison(std::ostream& out, const std::vector<CompareCase>& cases) {
+void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
+  std::vector<CompareCase> cases;
+  for (const CompareCase& c : all)
+    if (c.failure.empty())
+      cases.push_back(c);
+    else
+      out << c.label << ": run failed: " << c.failure << "\n";
+  if (cases.empty()) return;
   const std::vector<int>& watched = cases.front().result.watched;
   char buf[256];
   // Columns as wide as the longest case's label and two spaces (a label runs into none).

@@ -268,6 +268,8 @@ int main(int argc, char** argv) {
       const std::vector<rccm::CompareCase> cases = rccm::run_comparison(cfg, integrators, solvers, euler_steps);
       std::cout << "# " << config_file << "\n";
       rccm::print_comparison(std::cout, cases);
+      for (const rccm::CompareCase& c : cases)
+        if (!c.failure.empty()) return 3;  // as a failed `rccm run`
     }
     return 0;
   } catch (const rccm::InputError& e) {

@@ -1,6 +1,7 @@
 #include "rccm/time/rate_independent_integrator.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/format.hpp"
 
 #include <sstream>
 
@@ -8,7 +9,7 @@ namespace rccm {
 
 void RateIndependentIntegrator::step(double t_new) {
   Eigen::VectorXd beta = ode_.committed_beta(), next(ode_.size()), last = Eigen::VectorXd::Zero(ode_.size());
-  double relaxation = 1;  // of each update; halved at every oscillation of the iterates
+  Eigen::ArrayXd relaxation = Eigen::ArrayXd::Ones(ode_.size());  // of each node's update
   for (int k = 1;; ++k) {
     ode_.rate_independent_beta(t_new, beta, next);  // min(beta_n, w / (Cn u_n^2 + Ct u_t^2)) at u(beta)
     ++stats_.rhs_evaluations;
@@ -20,18 +21,21 @@ void RateIndependentIntegrator::step(double t_new) {
       beta = next;
       break;
     }
-    // A node whose update turned back: with friction a lower beta may stick (mubar grows) and
-    // strain less, and the plain iteration can cycle around the consistent beta (slopes below
-    // -1); relaxed, it contracts. Without friction the updates never turn back: plain.
-    if ((update.array() * last.array() < 0 && update.array().abs() > tolerance_).any()) relaxation /= 2;
-    beta += relaxation * update;
+    // A node whose update turned back without halving: with friction a lower beta may stick
+    // (mubar grows) and strain less, and the plain iteration can cycle around the consistent
+    // beta (slopes below -1); relaxed, it contracts. Without friction the updates never turn
+    // back: plain. Node by node, so that an unzipping front elsewhere goes on at full steps.
+    const auto cycling = update.array() * last.array() < 0 && update.array().abs() > 0.5 * last.array().abs() &&
+                         update.array().abs() > tolerance_;
+    relaxation = cycling.select((relaxation / 2).max(1.0 / 1024), relaxation);  // contracts slopes down to -2047
+    beta.array() += relaxation * update.array();
     last = update;
     if (k >= max_iterations_) {
       std::ostringstream m;
       m << "t = " << t_new << " s, step " << ode_.steps() + 1 << ": the rate-independent fixed point did not "
         << "converge in " << max_iterations_ << " iterations (change of beta " << change << " at "
         << ode_.locate(int(node)) << "); raise integrator.fixed_point_iterations or loosen integrator.fixed_point_tolerance ("
-        << tolerance_ << ")";
+        << tolerance_ << ")" << (relaxation.minCoeff() < 1 ? "; its updates cycled and were relaxed down to " + fmt("%g", relaxation.minCoeff()) + " (friction: a node that sticks as beta falls)" : "");
       throw SolveError(m.str());
     }
   }

@@ -68,3 +68,24 @@ TEST_CASE("compare: the table's columns stay apart however long the cases' label
   std::getline(lines, first);
   CHECK(first.size() == header.size());
 }
+
+TEST_CASE("compare: a case whose run fails says so, and the others are compared", "[compare]") {
+  // ARKODE held to 3 steps cannot reach T; Euler's fixed steps do.
+  const Config cfg = load_config(test::shipped("b1.cfg"), {"time.T=0.5", "output.times=[0.25]", "integrator.max_steps=3"});
+  const std::vector<CompareCase> cases = run_comparison(cfg, {"arkode", "euler", "contact-only"}, {}, 20);
+  REQUIRE(cases.size() == 3);
+  CHECK_THAT(cases[0].failure, Catch::Contains("integrator.max_steps"));
+  CHECK(cases[1].failure.empty());
+  CHECK(cases[2].failure.empty());
+  std::ostringstream table;
+  print_comparison(table, cases);
+  std::istringstream lines(table.str());
+  std::string line;
+  std::getline(lines, line);
+  CHECK_THAT(line, Catch::StartsWith("arkode: run failed: "));
+  while (std::getline(lines, line) && line.rfind(std::string(34, ' '), 0) != 0) continue;  // past the message
+  std::istringstream words(line);
+  std::vector<std::string> labels;
+  for (std::string word; words >> word;) labels.push_back(word);
+  CHECK(labels == std::vector<std::string>{"euler", "contact-only"});
+}
