@@ -137,11 +137,11 @@ void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
     const std::string text = fmt(format, v);
     return std::string(std::max(0, width - static_cast<int>(text.size())), ' ') + text;
   };
+  std::vector<std::pair<std::string, std::string>> rows;  // label, cells: printed once the labels' width is known
   auto row = [&](const std::string& label, auto&& value_of) {
-    std::snprintf(buf, sizeof buf, "%-34s", label.c_str());
-    out << buf;
-    for (const CompareCase& c : cases) out << value_of(c);
-    out << "\n";
+    std::string cells;
+    for (const CompareCase& c : cases) cells += value_of(c);
+    rows.emplace_back(label, cells);
   };
   row("", [&](const CompareCase& c) {
     std::snprintf(buf, sizeof buf, "%*s", width, c.label.c_str());
@@ -166,6 +166,9 @@ void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
   });
   row("contact iterations, max", [&](const CompareCase& c) { return cell("%.0f", c.result.solves.max_sweeps); });
   row("wall time [s]", [&](const CompareCase& c) { return cell("%.3f", c.result.wall_seconds); });
+  std::size_t label_width = 34;
+  for (const auto& [label, cells] : rows) label_width = std::max(label_width, label.size() + 1);
+  for (const auto& [label, cells] : rows) out << label << std::string(label_width - label.size(), ' ') << cells << "\n";
   print_tables(out, cases);
   for (const CompareCase& c : cases)
     for (const std::string& w : c.result.warnings) out << c.label << ": warning: " << w << "\n";

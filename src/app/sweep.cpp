@@ -258,8 +258,12 @@ std::size_t reported_load(const std::vector<SweepCase>& cases) {
   const auto drive = [&](std::size_t k) {  // 2 varies, 1 held at a value other than 0, 0 held at 0
     int level = 0;
     for (const SweepCase& c : cases)
-      if (k < c.config.loads.size()) {
-        const std::vector<double>& v = c.config.loads[k].amplitude.v;
+      if (c.status == CaseStatus::Complete && k < c.config.loads.size()) {  // as the plot reads curves.csv
+        const TimeFunction& f = c.config.loads[k].amplitude;
+        const double T = c.config.time.T;
+        std::vector<double> v{f(0.0), f(T)};  // its values over the run: the ends and the corners between
+        for (std::size_t j = 0; j < f.t.size(); ++j)
+          if (f.t[j] > 0 && f.t[j] < T) v.push_back(f.v[j]);
         for (double x : v) level = std::max(level, x != v.front() ? 2 : x != 0 ? 1 : 0);
       }
     return level;

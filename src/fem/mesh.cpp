@@ -152,11 +152,13 @@ std::vector<double> Mesh::tributary_lengths(const std::vector<int>& set) const {
 namespace {
 
 /// Whether the simplex of `corners` (a triangle in 2D, a tetrahedron in 3D) holds x: its
-/// barycentric coordinates all >= -tolerance.
+/// barycentric coordinates all >= -tolerance. A flat simplex (a Q4 or H8 split where corners
+/// line up) holds nothing: its volume is the cell's elsewhere.
 bool simplex_holds(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vector3d& x, double tolerance) {
   const int dim = static_cast<int>(corners.size()) - 1;
   Eigen::MatrixXd A(dim, dim);
   for (int j = 0; j < dim; ++j) A.col(j) = (corners[j + 1] - corners[0]).head(dim);
+  if (std::abs(A.determinant()) <= 1e-12 * std::pow(A.colwise().norm().maxCoeff(), dim)) return false;
   const Eigen::VectorXd lambda = A.fullPivLu().solve((x - corners[0]).head(dim));
   return (lambda.array() >= -tolerance).all() && lambda.sum() <= 1 + tolerance;
 }

@@ -107,8 +107,8 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
            "  s3). What a snap-through releases does not shrink with the steps: twice time.steps tells the\n"
            "  two apart. The normal contact work, 0 along an exact path, is the trapezoid rule across a jump.\n";
     if (e.imbalance() < -e.round_off)  // a snap-through releases work, it never takes any in
-      out << "  It is negative here: no snap-through releases negative work, so it is the steps' error;\n"
-             "  more time.steps make it smaller.\n";
+      out << "  It is negative here: no snap-through releases negative work, so the steps' error is at\n"
+             "  least this large; more time.steps make it smaller.\n";
   } else if (e.relative_error() > 1e-2)
     out << "  The imbalance is large: beta fell by a large amount within single steps (a time step too\n"
            "  coarse for the debonding); refine the steps or tighten integrator.rtol.\n";

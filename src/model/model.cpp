@@ -45,14 +45,20 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
     for (std::size_t j = 0; j < candidates.size(); ++j)
       if (j != best && (mesh.nodes[candidates[j]] - mesh.nodes[candidates[best]]).norm() <= 1e-9 * reach) shared.push_back(j);
     if (shared.size() > 1) {
-      const auto body_of = [&](int node) {
+      const auto in_body = [&](int node, int body) {  // a node of a cell of `body` (bodies without an interface share nodes)
         for (std::size_t c = 0; c < mesh.cells.size(); ++c)
-          if (std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end()) return mesh.cell_body[c];
+          if (mesh.cell_body[c] == body && std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end())
+            return true;
+        return false;
+      };
+      const auto body_of = [&](int node) {
+        for (int b = 0; b < static_cast<int>(mesh.body_names.size()); ++b)
+          if (in_body(node, b)) return b;
         return -1;
       };
       const std::vector<int> holding = mesh.bodies_holding(p);
       const auto in = std::find_if(shared.begin(), shared.end(), [&](std::size_t j) {
-        return holding.size() == 1 && body_of(candidates[j]) == holding[0];
+        return holding.size() == 1 && in_body(candidates[j], holding[0]);
       });
       if (in == shared.end()) {
         const auto name = [&](std::size_t j) {
@@ -63,7 +69,8 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
           << point(given, mesh.dim) << " is as near to mesh node " << candidates[shared[0]] << " of " << name(shared[0])
           << " as to mesh node " << candidates[shared[1]] << " of " << name(shared[1]) << " (they share that point), and lies "
-          << (holding.empty() ? "in neither body" : "on the boundary they share") << "; move it into the body you mean";
+          << (holding.empty() ? "in neither body" : holding.size() > 1 ? "on the boundary they share" : "in body '" + mesh.body_names[holding[0]] + "'")
+          << "; move it into the body you mean";
         throw InputError(m.str());
       }
       best = *in;

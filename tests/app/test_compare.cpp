@@ -64,9 +64,10 @@ TEST_CASE("compare: the table's columns stay apart however long the cases' label
   std::vector<std::string> labels;
   while (words >> word) labels.push_back(word);
   CHECK(labels == std::vector<std::string>{"contact-only/bipotential", "contact-only/newton"});
-  std::string first;  // the first row's cells end under the labels
-  std::getline(lines, first);
-  CHECK(first.size() == header.size());
+  // every row's cells end under the labels, "max |beta - contact-only/bipotential|" too
+  int rows = 0;
+  for (std::string line; std::getline(lines, line) && !line.empty(); ++rows) CHECK(line.size() == header.size());
+  CHECK(rows == 12);
 }
 
 TEST_CASE("compare: a case whose run fails says so, and the others are compared", "[compare]") {

@@ -205,7 +205,7 @@ TEST_CASE("a sweep reports the driven load's peak, not a support's that carries 
   // driven one: the driven one, though the held one's force is larger (the audit's shear test
   // reported its pressure); without a driven load, the held one, though a support's is larger.
   for (SweepCase& c : cases) {
-    c.config.loads[0].amplitude.v.assign(c.config.loads[0].amplitude.v.size(), 5.0);
+    c.config.loads[0].amplitude = {{0.0, c.config.time.T, 2 * c.config.time.T}, {5.0, 5.0, 20.0}};  // held to T
     c.config.loads[1].amplitude.v = {0.0, 0.3};
     c.result.peak_force = {-900.0, 650.0};
   }

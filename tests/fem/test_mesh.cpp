@@ -70,3 +70,12 @@ TEST_CASE("a point on the face two bodies share is held by both, one beside it b
   CHECK(m.bodies_holding({0.5, 1.01, 0}) == std::vector<int>{1});
   CHECK(m.bodies_holding({1.5, 1.0, 0}).empty());
 }
+
+TEST_CASE("a cell whose split has a flat simplex holds only its own points", "[mesh]") {
+  // A Q4 with three corners in a line (0, 1, 2): its first triangle is flat, and a flat
+  // triangle's barycentric coordinates would claim points far off the cell.
+  const Mesh m = one_cell(2, {{0, 0, 0}, {1, 0, 0}, {2, 0, 0}, {0, 1, 0}});
+  const Eigen::Matrix3d T = distortion(2);
+  CHECK(m.bodies_holding(T * Eigen::Vector3d(0.5, 5, 0)).empty());
+  CHECK(m.bodies_holding(T * Eigen::Vector3d(0.5, 0.25, 0)) == std::vector<int>{0});
+}

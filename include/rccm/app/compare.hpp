@@ -22,7 +22,8 @@ struct CompareCase {
 /// Runs `cfg` once per integrator name ("arkode", "euler", "rate-independent", "contact-only")
 /// and contact solver name ("bipotential", "rccm", "newton"; empty: the config's), Euler with
 /// `euler_steps` fixed steps (0: time.steps); alpha = 0 on every interface runs the
-/// rate-independent limit once per solver instead. Throws InputError for an unknown name; a
+/// rate-independent limit once per solver in place of the viscous integrators (contact-only
+/// stays). Throws InputError for an unknown name; a
 /// case whose run fails keeps its message (`failure`) and the others run.
 std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std::string>& integrators,
                                         const std::vector<std::string>& solvers, int euler_steps);
