@@ -87,7 +87,7 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
       solvers.empty() ? std::vector<std::string>{contact_method_name(cfg.solver.method)} : solvers;
   // alpha = 0 on every interface: the rate-independent limit in place of the viscous
   // integrators asked (as `run` and `sweep`: rate_independent_limit), run once.
-  const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
+  const bool limit = alpha_zero_everywhere(cfg);
   std::vector<std::string> integrator_names, limited;  // each once; at alpha = 0, the method that runs
   for (const std::string& name : integrators) {
     const std::string runs = limit ? method_name(rate_independent_limit(integrator_of(name))) : name;
@@ -129,24 +129,20 @@ void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
       out << c.label << ": run failed: " << c.failure << "\n";
   if (cases.empty()) return;
   const std::vector<int>& watched = cases.front().result.watched;
-  char buf[256];
   // Columns as wide as the longest case's label and two spaces (a label runs into none).
   int width = 20;
   for (const CompareCase& c : cases) width = std::max(width, static_cast<int>(c.label.size()) + 2);
-  const auto cell = [&](const char* format, double v) {
-    const std::string text = fmt(format, v);
+  const auto right = [&](const std::string& text) {  // right-aligned in its column
     return std::string(std::max(0, width - static_cast<int>(text.size())), ' ') + text;
   };
+  const auto cell = [&](const char* format, double v) { return right(fmt(format, v)); };
   std::vector<std::pair<std::string, std::string>> rows;  // label, cells: printed once the labels' width is known
   auto row = [&](const std::string& label, auto&& value_of) {
     std::string cells;
     for (const CompareCase& c : cases) cells += value_of(c);
     rows.emplace_back(label, cells);
   };
-  row("", [&](const CompareCase& c) {
-    std::snprintf(buf, sizeof buf, "%*s", width, c.label.c_str());
-    return std::string(buf);
-  });
+  row("", [&](const CompareCase& c) { return right(c.label); });
   const std::vector<Snapshot>& ref = cases.front().result.snapshots;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     for (std::size_t w = 0; w < watched.size(); ++w)

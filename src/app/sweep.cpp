@@ -268,14 +268,15 @@ std::size_t reported_load(const std::vector<SweepCase>& cases) {
       }
     return level;
   };
-  int top = 0;
-  for (std::size_t k = 0; k < cases.front().config.loads.size(); ++k) top = std::max(top, drive(k));
+  std::vector<int> levels(cases.front().config.loads.size());  // the cases' loads are the same
+  for (std::size_t k = 0; k < levels.size(); ++k) levels[k] = drive(k);
+  const int top = levels.empty() ? 0 : *std::max_element(levels.begin(), levels.end());
   std::size_t load = 0;
   double largest = -1;
   for (const SweepCase& c : cases)
     if (c.status == CaseStatus::Complete)
       for (std::size_t k = 0; k < c.result.peak_force.size(); ++k)
-        if (drive(k) == top && std::abs(c.result.peak_force[k]) > largest)
+        if (k < levels.size() && levels[k] == top && std::abs(c.result.peak_force[k]) > largest)
           largest = std::abs(c.result.peak_force[k]), load = k;
   return load;
 }

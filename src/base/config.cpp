@@ -195,6 +195,10 @@ const char* method_name(Method m) {
   return "";
 }
 
+bool alpha_zero_everywhere(const Config& cfg) {
+  return std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
+}
+
 Method rate_independent_limit(Method m) {
   return m == Method::ContactOnly ? m : Method::RateIndependent;
 }
@@ -214,7 +218,7 @@ std::vector<std::string> unused_settings(const Config& cfg) {
   const bool gauss_seidel = bipotential && S.form == SweepForm::GaussSeidel;
   const Method m = cfg.integrator.method;
   const std::string solver = std::string("the \"") + contact_method_name(S.method) + "\" solver";
-  const bool limit = std::all_of(cfg.interfaces.begin(), cfg.interfaces.end(), [](const InterfaceParams& p) { return p.alpha == 0; });
+  const bool limit = alpha_zero_everywhere(cfg);
   const std::string integrator = std::string("the \"") + method_name(m) + "\" integrator" +
                                  (m == Method::RateIndependent && limit ? " (alpha = 0 on every interface)" : "");
   const std::string cholmod = "solver.linear = \"cholmod\"";

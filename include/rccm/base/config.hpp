@@ -234,6 +234,9 @@ struct Config {
 /// The config name of a method ("arkode", "euler", "rate-independent", "contact-only").
 const char* method_name(Method m);
 
+/// Whether alpha = 0 on every interface: the rate-independent limit (docs/MODEL.md s3).
+bool alpha_zero_everywhere(const Config& cfg);
+
 /// The method that runs in place of `m` when alpha = 0 on every interface: rate-independent for
 /// the viscous methods (they need alpha > 0), contact-only as it is (it holds beta at beta0).
 Method rate_independent_limit(Method m);

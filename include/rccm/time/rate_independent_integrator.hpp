@@ -4,8 +4,9 @@
 //   starting from beta_n the iterates decrease monotonically to the largest consistent beta.
 //   With friction a lower beta may stick and strain less (mubar = mu (1 - beta) grows), and
 //   the plain iteration can cycle: a node's updates are then relaxed, halved at each turn
-//   that did not halve the update (node by node: a front unzipping elsewhere keeps full steps). The fixed point cannot resolve beta below the contact solve's own
-//   accuracy: its tolerance is at least 100 times the solver's.
+//   that did not halve the update (node by node: a front unzipping elsewhere keeps full
+//   steps). The fixed point cannot resolve beta below the contact solve's own accuracy: its
+//   tolerance is at least 100 times the solver's.
 #pragma once
 
 #include "rccm/time/integrator.hpp"
