@@ -3,9 +3,10 @@
 //   (t_{n+1}, beta_{n+1}), made consistent by a fixed point in each step. Without friction,
 //   starting from beta_n the iterates decrease monotonically to the largest consistent beta.
 //   With friction a lower beta may stick and strain less (mubar = mu (1 - beta) grows), and
-//   the plain iteration can cycle: a node's updates are then relaxed, halved at each turn
-//   that did not halve the update (node by node: a front unzipping elsewhere keeps full
-//   steps). The fixed point cannot resolve beta below the contact solve's own accuracy: its
+//   the plain iteration can cycle: a node whose update turned back without halving three
+//   times is then relaxed, by a factor halved at each such turn (node by node: a front
+//   unzipping elsewhere keeps full steps). Fewer turns come and go in a snap-through cascade,
+//   with or without friction, where the plain iteration converges. The fixed point cannot resolve beta below the contact solve's own accuracy: its
 //   tolerance is at least 100 times the solver's.
 #pragma once
 
