@@ -51,6 +51,10 @@ expect_bad "interface.mu: must be a number (got a string)" --set interface.mu=0.
 check; "$rccm" run "$b1" -q --restart '' 2>"$work/err"; rc=$?
 [ "$rc" -eq 2 ] && grep -q -- "--restart: give the directory" "$work/err" || fail "--restart '': exit $rc, $(cat "$work/err")"
 
+for sub in run sweep; do
+  check; (cd "$work" && "$rccm" $sub "$b1" -o '' 2>"$work/err" >/dev/null); rc=$?
+  [ "$rc" -eq 2 ] && grep -q -- "-o: give the directory to write in" "$work/err" || fail "$sub -o '': exit $rc, $(cat "$work/err")"
+done
 check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare path" >/dev/null 2>"$work/err" \
   || fail "a bare path for output.directory: $(cat "$work/err")"
 [ -s "$work/bare path/history.csv" ] || fail "a bare path for output.directory: no history.csv there"

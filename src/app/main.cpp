@@ -120,9 +120,9 @@ int main(int argc, char** argv) {
   int jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   sweep_app->add_option("--jobs,-j", jobs, "cases run at once (default: the machine's cores)")
       ->check(CLI::Range(1, 1024));
-  sweep_app->add_option("--output,-o", output_dir,
-                        "directory of the cases and the summary (default: <output.directory>-sweep)");
-  run->add_option("--output,-o", output_dir, "output directory (instead of output.directory)");
+  CLI::Option* sweep_output = sweep_app->add_option("--output,-o", output_dir,
+                                                   "directory of the cases and the summary (default: <output.directory>-sweep)");
+  CLI::Option* run_output = run->add_option("--output,-o", output_dir, "output directory (instead of output.directory)");
   for (CLI::App* sub : {run, compare, sweep_app}) {
     sub->add_option("config", config_file, "libconfig file, e.g. config/b1.cfg")->required();
     sub->add_option("--set", overrides, "override a setting: path=value (repeatable)");
@@ -238,6 +238,8 @@ int main(int argc, char** argv) {
     }
     if (restart->count() + sweep_restart->count() > 0 && restart_dir.empty())
       throw rccm::InputError("--restart: give the directory of the run to go on with, e.g. --restart results/b1");
+    if (run_output->count() + sweep_output->count() > 0 && output_dir.empty())
+      throw rccm::InputError("-o: give the directory to write in, e.g. -o results/mine (an empty name would write to output.directory)");
     if (!restart_dir.empty() && !output_dir.empty() && restart_dir != output_dir)
       throw rccm::InputError("--restart " + restart_dir + " and -o " + output_dir + ": a restart writes where it started");
     if (*sweep_app) {
