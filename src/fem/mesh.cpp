@@ -165,23 +165,30 @@ bool simplex_holds(const std::vector<Eigen::Vector3d>& corners, const Eigen::Vec
 
 }  // namespace
 
-std::vector<int> Mesh::bodies_holding(const Eigen::Vector3d& x) const {
+std::vector<int> Mesh::cells_holding(const Eigen::Vector3d& x) const {
   // Each cell as simplices of its corners: T3, T4 itself; Q4 two triangles; H8 six tetrahedra
   // about its diagonal 0-6 (straight-edged cells: what the linear elements are).
   static const std::vector<std::vector<int>> t3 = {{0, 1, 2}}, q4 = {{0, 1, 2}, {0, 2, 3}}, t4 = {{0, 1, 2, 3}};
   static const std::vector<std::vector<int>> h8 = {{0, 1, 2, 6}, {0, 2, 3, 6}, {0, 3, 7, 6},
                                                    {0, 7, 4, 6}, {0, 4, 5, 6}, {0, 5, 1, 6}};
-  std::vector<int> bodies;
+  std::vector<int> holding;
   for (std::size_t c = 0; c < cells.size(); ++c) {
     const std::vector<int>& cell = cells[c];
     const std::vector<std::vector<int>>& simplices = cell.size() == 8 ? h8 : dim == 3 ? t4 : cell.size() == 4 ? q4 : t3;
-    for (const std::vector<int>& simplex : simplices) {
+    const auto holds = [&](const std::vector<int>& simplex) {
       std::vector<Eigen::Vector3d> corners;
       for (int k : simplex) corners.push_back(nodes[cell[k]]);
-      if (simplex_holds(corners, x, 1e-9) && std::find(bodies.begin(), bodies.end(), cell_body[c]) == bodies.end())
-        bodies.push_back(cell_body[c]);
-    }
+      return simplex_holds(corners, x, 1e-9);
+    };
+    if (std::any_of(simplices.begin(), simplices.end(), holds)) holding.push_back(static_cast<int>(c));
   }
+  return holding;
+}
+
+std::vector<int> Mesh::bodies_holding(const Eigen::Vector3d& x) const {
+  std::vector<int> bodies;
+  for (int c : cells_holding(x))
+    if (std::find(bodies.begin(), bodies.end(), cell_body[c]) == bodies.end()) bodies.push_back(cell_body[c]);
   return bodies;
 }
 

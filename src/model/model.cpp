@@ -39,16 +39,19 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         << distance(best) << " mm from the nearest " << what;
       throw InputError(m.str());
     }
-    // Two nodes at that point (two bodies glued there, each with its own nodes): the node of the
-    // body the point lies in; on the boundary they share, which one it means is the user's to say.
+    // Two nodes at that point (two bodies glued there, or the two sides of a crack in one body,
+    // each with its own nodes): the node of the body, then of the cells, the point lies in; on
+    // the boundary or the crack they share, which one it means is the user's to say.
     std::vector<std::size_t> shared{best};
     for (std::size_t j = 0; j < candidates.size(); ++j)
       if (j != best && (mesh.nodes[candidates[j]] - mesh.nodes[candidates[best]]).norm() <= 1e-9 * reach) shared.push_back(j);
     if (shared.size() > 1) {
+      const auto in_cell = [&](int node, int c) {
+        return std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end();
+      };
       const auto in_body = [&](int node, int body) {  // a node of a cell of `body` (bodies without an interface share nodes)
         for (std::size_t c = 0; c < mesh.cells.size(); ++c)
-          if (mesh.cell_body[c] == body && std::find(mesh.cells[c].begin(), mesh.cells[c].end(), node) != mesh.cells[c].end())
-            return true;
+          if (mesh.cell_body[c] == body && in_cell(node, int(c))) return true;
         return false;
       };
       const auto body_of = [&](int node) {
@@ -57,10 +60,17 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         return -1;
       };
       const std::vector<int> holding = mesh.bodies_holding(p);
-      const auto in = std::find_if(shared.begin(), shared.end(), [&](std::size_t j) {
-        return holding.size() == 1 && in_body(candidates[j], holding[0]);
-      });
-      if (in == shared.end()) {
+      std::vector<std::size_t> in;  // the shared nodes of the body the point lies in
+      for (std::size_t j : shared)
+        if (holding.size() == 1 && in_body(candidates[j], holding[0])) in.push_back(j);
+      const bool crack = in.size() > 1;
+      if (crack) {  // of those, the nodes of the cells that hold the point
+        const std::vector<int> cells = mesh.cells_holding(p);
+        in.erase(std::remove_if(in.begin(), in.end(), [&](std::size_t j) {
+                   return std::none_of(cells.begin(), cells.end(), [&](int c) { return in_cell(candidates[j], c); });
+                 }), in.end());
+      }
+      if (in.size() != 1) {
         const auto name = [&](std::size_t j) {
           const int b = body_of(candidates[j]);
           return b < 0 ? std::string("no body") : "body '" + mesh.body_names[b] + "'";
@@ -69,11 +79,14 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
           << point(given, mesh.dim) << " is as near to mesh node " << candidates[shared[0]] << " of " << name(shared[0])
           << " as to mesh node " << candidates[shared[1]] << " of " << name(shared[1]) << " (they share that point), and lies "
-          << (holding.empty() ? "in neither body" : holding.size() > 1 ? "on the boundary they share" : "in body '" + mesh.body_names[holding[0]] + "'")
-          << "; move it into the body you mean";
+          << (holding.empty() ? "in neither body"
+              : holding.size() > 1 ? "on the boundary they share"
+              : crack ? (in.empty() ? "in a cell of neither" : "on the crack between them, in body '" + mesh.body_names[holding[0]] + "'")
+              : "in body '" + mesh.body_names[holding[0]] + "'")
+          << "; move it into the body, or the side of the crack, you mean";
         throw InputError(m.str());
       }
-      best = *in;
+      best = in[0];
     }
     out.push_back(static_cast<int>(best));
   }

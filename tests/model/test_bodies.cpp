@@ -195,6 +195,41 @@ output = { probes = ( { name = "below"; point = [5.0, 1.9]; }, { name = "above";
   }
 }
 
+TEST_CASE("a probe beside a crack inside one body probes the side it lies in", "[bodies]") {
+  // tests/meshes/cracked_plate_v22.msh: four Q4 of one body on [0, 2] x [0, 2], the edge from
+  // (0, 1) to (1, 1) cracked: (0, 1) is node 4 of the lower-left cell and node 10 of the
+  // upper-left one. (0, 0.9) lies below the crack, (0.05, 1.1) above; (0, 1) on it.
+  const std::string mesh = std::string(RCCM_SOURCE_DIR) + "/tests/meshes/cracked_plate_v22.msh";
+  const auto with_probe = [&](const std::string& at) {
+    return test::config_from_text("mesh = { file = \"" + mesh + R"("; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 1e3; Ct = 1e3; w = 1.0; mu = 0.3; };
+loads = ( { node_set = "plate"; type = "force"; component = "y"; value = 0.0; } );
+time = { T = 1.0; };
+output = { probes = ( { name = "p"; point = )" + at + "; } ); };\n");
+  };
+  for (const auto& [at, below] : {std::pair<std::string, bool>{"[0.0, 0.9]", true}, {"[0.05, 1.1]", false}}) {
+    INFO(at);
+    const Model m = test::make_model(with_probe(at));
+    REQUIRE(m.probes().size() == 1);
+    const Mesh& x = m.mesh();
+    const int node = m.probes()[0];
+    CHECK((x.nodes[node] - Eigen::Vector3d(0, 1, 0)).norm() < 1e-12);
+    // the node is a corner of the cell on the point's side and not of the other one
+    const auto corner_of_cell_at = [&](double y) {
+      const std::vector<int> cells = x.cells_holding({0.5, y, 0});
+      REQUIRE(cells.size() == 1);
+      const std::vector<int>& cell = x.cells[cells[0]];
+      return std::find(cell.begin(), cell.end(), node) != cell.end();
+    };
+    CHECK(corner_of_cell_at(0.5) == below);
+    CHECK(corner_of_cell_at(1.5) == !below);
+  }
+  CHECK_THROWS_WITH(test::make_model(with_probe("[0.0, 1.0]")),
+                    Catch::Contains("(they share that point), and lies on the crack between them, in body 'plate'; move it "
+                                    "into the body, or the side of the crack, you mean"));
+}
+
 TEST_CASE("bodies and body-body interfaces that cannot be are refused, naming the setting and the node", "[bodies]") {
   const std::string rest = R"(
 loads = ( { node_set = "top"; type = "displacement"; component = "y"; value = 0.1; },

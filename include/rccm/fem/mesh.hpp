@@ -84,8 +84,11 @@ struct Mesh {
   /// tributary area, mm^2 (what a debonded measure sums).
   std::vector<double> tributary_lengths(const std::vector<int>& set) const;
 
-  /// The bodies (indices in body_names) with a cell that holds `x`, on its boundary too (to
-  /// 1e-9 of the cell's size): one where x is inside a body, two on the boundary two share.
+  /// The cells that hold `x`, on their boundary too (to 1e-9 of the cell's size).
+  std::vector<int> cells_holding(const Eigen::Vector3d& x) const;
+
+  /// The bodies (indices in body_names) with a cell that holds `x`: one where x is inside a
+  /// body, two on the boundary two share.
   std::vector<int> bodies_holding(const Eigen::Vector3d& x) const;
 };
 
