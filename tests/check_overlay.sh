@@ -13,7 +13,8 @@
 #  6. with a support listed before the pull (the sweep's loads), panel (a) draws the pull, the
 #     load whose force is largest, and names it; the sweep's summary.csv reports its peak;
 #  7. a support whose force exceeds the pull's (one that carries it back): panel (a) draws the
-#     driven load (a value other than 0) all the same.
+#     driven load (a value other than 0) all the same;
+#  8. a load held from the start (a confining pressure) with a larger force: the driven one.
 # Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
@@ -170,17 +171,23 @@ then pass; else fail "the drawn and summarized load"; fi
 
 # 7. A support that carries the pull back (two bodies, a pile in its soil), here its force made
 #    1.5 times the pull's in copies of the cases: panel (a) still draws the driven load.
-if PYTHONPATH="$work" $py - "$plot" "$work/carried" "${cases[@]}" <<'EOF'
+# 8. A load held from the start (a confining pressure: its value the same nonzero one at every
+#    time), its force 3 times the pull's: panel (a) draws the driven load, not the held one.
+for variant in carried held; do
+if PYTHONPATH="$work" $py - "$plot" "$work/$variant" "$variant" "${cases[@]}" <<'EOF'
 import csv, os, shutil, sys
 from plot_module import plot, drawn
-copies = []
-for d in sys.argv[3:]:
+variant, copies = sys.argv[3], []
+for d in sys.argv[4:]:
     copy = os.path.join(sys.argv[2], os.path.basename(d))
     shutil.copytree(d, copy)
     path = os.path.join(copy, "curves.csv")
     rows = list(csv.DictReader(open(path)))
     for r in rows:
-        r["L0 top_right.x force [N]"] = repr(-1.5 * float(r["L1 top_left.y force [N]"]))
+        pull = float(r["L1 top_left.y force [N]"])
+        r["L0 top_right.x force [N]"] = repr(-1.5 * pull if variant == "carried" else 3 * abs(pull) + 1.0)
+        if variant == "held":
+            r["L0 top_right.x value [mm]"] = "0.1"
     with open(path, "w", newline="") as f:
         w = csv.DictWriter(f, fieldnames=list(rows[0]))
         w.writeheader()
@@ -189,10 +196,11 @@ for d in sys.argv[3:]:
 plot.overlay("/nonexistent-unused", copies)
 force = [a for a in drawn["fig"].axes if a.get_title(loc="left").startswith("(a)")][0]
 ok = "top_left" in force.get_ylabel()
-print("" if ok else f"panel (a)'s force axis is {force.get_ylabel()!r}, not the driven top_left.y")
+print("" if ok else f"{variant}: panel (a)'s force axis is {force.get_ylabel()!r}, not the driven top_left.y")
 sys.exit(0 if ok else 1)
 EOF
-then pass; else fail "a support carrying the pull back drawn instead of the pull"; fi
+then pass; else fail "a support $variant drawn instead of the pull"; fi
+done
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]
