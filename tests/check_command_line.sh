@@ -54,6 +54,9 @@ check; "$rccm" run "$b1" -q --restart '' 2>"$work/err"; rc=$?
 for sub in run sweep; do
   check; (cd "$work" && "$rccm" $sub "$b1" -o '' 2>"$work/err" >/dev/null); rc=$?
   [ "$rc" -eq 2 ] && grep -q -- "-o: give the directory to write in" "$work/err" || fail "$sub -o '': exit $rc, $(cat "$work/err")"
+  check; (cd "$work" && "$rccm" $sub "$b1" -o -q 2>"$work/err" >/dev/null); rc=$?
+  [ "$rc" -eq 2 ] && grep -q -- "-o -q: a directory name that starts with '-' reads as an option" "$work/err" && [ ! -e "$work/-q" ] \
+    || fail "$sub -o -q: exit $rc, $(cat "$work/err")"
 done
 check; "$rccm" run "$b1" -q "${short[@]}" --set "output.directory=$work/bare path" >/dev/null 2>"$work/err" \
   || fail "a bare path for output.directory: $(cat "$work/err")"

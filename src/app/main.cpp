@@ -240,6 +240,9 @@ int main(int argc, char** argv) {
       throw rccm::InputError("--restart: give the directory of the run to go on with, e.g. --restart results/b1");
     if (run_output->count() + sweep_output->count() > 0 && output_dir.empty())
       throw rccm::InputError("-o: give the directory to write in, e.g. -o results/mine (an empty name would write to output.directory)");
+    if (output_dir.rfind('-', 0) == 0)
+      throw rccm::InputError("-o " + output_dir + ": a directory name that starts with '-' reads as an option (an option "
+                             "after -o?); write ./" + output_dir + " if you mean that directory");
     if (!restart_dir.empty() && !output_dir.empty() && restart_dir != output_dir)
       throw rccm::InputError("--restart " + restart_dir + " and -o " + output_dir + ": a restart writes where it started");
     if (*sweep_app) {

@@ -298,7 +298,6 @@ class Reader {
             m_.cell_body.push_back(body);
           }
         }
-        check_every_node_in_a_cell(dim, e, nodes, name);
       }
       if (nodes_of_body.empty()) fail(kind + " '" + name + "' has no cells (is it meshed?)");
       m_.node_sets[name].assign(nodes_of_body.begin(), nodes_of_body.end());
@@ -312,29 +311,28 @@ class Reader {
         fail(std::string(group_kind(dim)) + " " + std::to_string(tag) + " is meshed but in no " + kind +
              ": add it to a body, or its cells would be left out");
     }
+    for (const auto& [e, body] : owner) check_every_node_in_a_cell(e, body);
   }
 
-  /// Every node inside entity `e` of a body is a node of one of its cells (`nodes`, by type).
-  /// gmsh keeps one cell type per entity of a .msh 2.2 file and drops the rest silently:
-  /// a hand-written file mixing T3 and T6 in one surface left the T6 out (their own nodes
-  /// orphaned), and the run went on without them.
-  void check_every_node_in_a_cell(int dim, int e, const std::vector<std::vector<std::size_t>>& nodes,
-                                  const std::string& body) {
-    std::set<std::size_t> used;
-    for (const auto& of_type : nodes) used.insert(of_type.begin(), of_type.end());
+  /// Every node inside entity `e` of `body` is a node of a cell of some body. gmsh keeps one
+  /// type of each kind of cell (triangles, quadrangles, ...) per entity and drops the others
+  /// silently: a file mixing T3 and T6 in one surface lost its T6 (their own nodes left in
+  /// no cell), and the run went on without them.
+  void check_every_node_in_a_cell(int e, const std::string& body) {
     std::vector<std::size_t> inside;
     std::vector<double> x, param;
-    gmsh::model::mesh::getNodes(inside, x, param, dim, e, false, false);
+    gmsh::model::mesh::getNodes(inside, x, param, m_.dim, e, false, false);
     std::size_t orphans = 0, first = 0;
     for (std::size_t k = 0; k < inside.size(); ++k)
-      if (!used.count(inside[k]) && orphans++ == 0) first = k;
+      if (!index_.count(inside[k]) && orphans++ == 0) first = k;
     if (orphans == 0) return;
     std::ostringstream m;
-    m << std::string(group_kind(dim)) << " " << e << " of " << physical(dim) << " '" << body << "' holds " << orphans
-      << " node(s) that no cell of it uses (node " << inside[first] << " at (" << x[3 * first] << ", " << x[3 * first + 1];
-    if (dim == 3) m << ", " << x[3 * first + 2];
-    m << ")): gmsh dropped cells it read, as it does where a .msh 2.2 file mixes linear and quadratic cells in one "
-      << "entity (e.g. T3 and T6): rccm reads linear cells only, mesh with Mesh.ElementOrder = 1";
+    m << group_kind(m_.dim) << " " << e << " of " << physical(m_.dim) << " '" << body << "' holds " << orphans
+      << " node(s) that no cell uses (node " << inside[first] << " at (" << x[3 * first] << ", " << x[3 * first + 1];
+    if (m_.dim == 3) m << ", " << x[3 * first + 2];
+    m << ")): gmsh may have dropped cells it read, as it does where a file mixes linear and quadratic cells of one "
+      << "kind in one entity (e.g. T3 and T6; rccm reads linear cells only: Mesh.ElementOrder = 1), or the file "
+      << "lists nodes of no cell: remove them";
     fail(m.str());
   }
 

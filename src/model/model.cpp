@@ -79,9 +79,10 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
         m << cfg.where("output." + list + ".[" + std::to_string(k) + "]") << " '" << points[k].name << "': point "
           << point(given, mesh.dim) << " is as near to mesh node " << candidates[shared[0]] << " of " << name(shared[0])
           << " as to mesh node " << candidates[shared[1]] << " of " << name(shared[1]) << " (they share that point), and lies "
-          << (holding.empty() ? "in neither body"
+          << (holding.empty() ? "in no body"
               : holding.size() > 1 ? "on the boundary they share"
-              : crack ? (in.empty() ? "in a cell of neither" : "on the crack between them, in body '" + mesh.body_names[holding[0]] + "'")
+              : crack ? (in.empty() ? "in a cell with neither as a corner (move it nearer the node you mean)"
+                                    : "on the crack between them, in body '" + mesh.body_names[holding[0]] + "'")
               : "in body '" + mesh.body_names[holding[0]] + "'")
           << "; move it into the body, or the side of the crack, you mean";
         throw InputError(m.str());

@@ -291,7 +291,7 @@ output = { times = [0.29, 0.5]; };
   const RunResult r = Simulation(cfg, {}).run();
   REQUIRE(r.stopped.empty());
   REQUIRE(r.snapshots.size() == 3);
-  CHECK(r.integrator.newton_iterations < 30 * r.integrator.steps);  // 24 per step: three turns plain, then relaxed
+  CHECK(r.integrator.newton_iterations < 20 * r.integrator.steps);  // 14 per step (12 relaxed from the first turn)
   for (const Snapshot& s : r.snapshots) {
     INFO("t = " << s.t);
     for (Eigen::Index i = 0; i < s.beta.size(); ++i) {
@@ -305,27 +305,36 @@ output = { times = [0.29, 0.5]; };
   CHECK(r.snapshots[2].beta.maxCoeff() < r.snapshots[0].beta.minCoeff());  // beta falls as the shear grows
 }
 
-TEST_CASE("B1 in the rate-independent limit at any friction: the fixed point converges in the plain iteration's count",
+TEST_CASE("B1 in the rate-independent limit under friction: the fixed point stays near the plain iteration's count",
           "[physics]") {
-  // B1 snaps through at alpha = 0: nodes' updates turn back in the cascade, with or without
-  // friction, and the plain iteration converges there (2.6 fixed-point iterations per step
-  // at 40 steps and mu = 0, where nothing can cycle). Relaxing a node from its first turn
-  // cost 3.5 per step at mu = 0 and failed in the first step at mu = 3 and 10.
-  for (const double mu : {0.0, 1.0, 3.0, 10.0}) {
-    INFO("mu = " << mu);
-    const Config cfg = load_config(test::shipped("b1.cfg"),
-                                   {"interface.alpha=0", "time.steps=40", "interface.mu=" + std::to_string(mu)});
+  // B1 snaps through at alpha = 0: in the cascade a node's update turns back for a few
+  // iterations (the layer bends as the front jumps), with or without friction, and the plain
+  // iteration converges there: 105 fixed-point iterations in 40 steps at mu = 0 to 10, 63 in
+  // 20 and 23 in 5 at mu = 1. Measured: 105, 105, 107, 107, 88, 49. Relaxing a node from
+  // its first turn took 139, 144, failed at mu = 3 and 10 (2541 with 20 000 allowed), 108,
+  // 315; halving from the first turn and relaxing from the third, 160 in 5 steps.
+  struct Case {
+    int steps;
+    double mu;
+    long bound;
+  };
+  for (const Case& c : {Case{40, 0.0, 120}, Case{40, 1.0, 120}, Case{40, 3.0, 120}, Case{40, 10.0, 120},
+                        Case{20, 1.0, 100}, Case{5, 1.0, 80}}) {
+    INFO(c.steps << " steps, mu = " << c.mu);
+    const Config cfg = load_config(test::shipped("b1.cfg"), {"interface.alpha=0", "time.steps=" + std::to_string(c.steps),
+                                                             "interface.mu=" + std::to_string(c.mu)});
     const RunResult r = Simulation(cfg, {}).run();
     REQUIRE(r.stopped.empty());
-    CHECK(r.integrator.newton_iterations < 3 * r.integrator.steps);
+    CHECK(r.integrator.newton_iterations < c.bound);
+    REQUIRE(r.snapshots.size() == 3);  // t = 3.571, 5.143, 10 s
     const InterfaceParams& law = cfg.interfaces.front();
     for (const Snapshot& s : r.snapshots)
       for (Eigen::Index i = 0; i < s.beta.size(); ++i) {
         INFO("t = " << s.t << ", node " << i);
         const double ut = s.u[2 * i], un = s.u[2 * i + 1], Rt = s.Rbar[2 * i], Rn = s.Rbar[2 * i + 1];
-        // never above the consistent beta (it equals it where beta falls in the step)
-        CHECK(s.beta[i] <= std::min(1.0, law.w / (law.Cn * un * un + law.Ct * ut * ut)) * (1 + 1e-6) + 1e-15);
-        CHECK(std::abs(Rt) <= mu * (1 - s.beta[i]) * Rn * (1 + 1e-8) + 1e-9);  // in the Coulomb cone
+        // consistent: B1's pull never unloads a damaged node, so beta = w / (Cn u_n^2 + Ct u_t^2) below 1
+        CHECK(s.beta[i] == Approx(std::min(1.0, law.w / (law.Cn * un * un + law.Ct * ut * ut))).epsilon(1e-6));
+        CHECK(std::abs(Rt) <= c.mu * (1 - s.beta[i]) * Rn * (1 + 1e-8) + 1e-9);  // in the Coulomb cone
       }
   }
 }

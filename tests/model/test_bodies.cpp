@@ -199,15 +199,15 @@ TEST_CASE("a probe beside a crack inside one body probes the side it lies in", "
   // tests/meshes/cracked_plate_v22.msh: four Q4 of one body on [0, 2] x [0, 2], the edge from
   // (0, 1) to (1, 1) cracked: (0, 1) is node 4 of the lower-left cell and node 10 of the
   // upper-left one. (0, 0.9) lies below the crack, (0.05, 1.1) above; (0, 1) on it.
-  const std::string mesh = std::string(RCCM_SOURCE_DIR) + "/tests/meshes/cracked_plate_v22.msh";
-  const auto with_probe = [&](const std::string& at) {
-    return test::config_from_text("mesh = { file = \"" + mesh + R"("; };
+  const auto probe_in = [](const std::string& file, const std::string& at) {
+    return test::config_from_text("mesh = { file = \"" + std::string(RCCM_SOURCE_DIR) + "/tests/meshes/" + file + R"("; };
 material = { E = 1000.0; nu = 0.3; };
 interface = { boundary = "bottom"; Cn = 1e3; Ct = 1e3; w = 1.0; mu = 0.3; };
 loads = ( { node_set = "plate"; type = "force"; component = "y"; value = 0.0; } );
 time = { T = 1.0; };
 output = { probes = ( { name = "p"; point = )" + at + "; } ); };\n");
   };
+  const auto with_probe = [&](const std::string& at) { return probe_in("cracked_plate_v22.msh", at); };
   for (const auto& [at, below] : {std::pair<std::string, bool>{"[0.0, 0.9]", true}, {"[0.05, 1.1]", false}}) {
     INFO(at);
     const Model m = test::make_model(with_probe(at));
@@ -228,6 +228,19 @@ output = { probes = ( { name = "p"; point = )" + at + "; } ); };\n");
   CHECK_THROWS_WITH(test::make_model(with_probe("[0.0, 1.0]")),
                     Catch::Contains("(they share that point), and lies on the crack between them, in body 'plate'; move it "
                                     "into the body, or the side of the crack, you mean"));
+  // tests/meshes/thin_crack_v22.msh: a crack along y = 0 whose middle node (0, 0) is node 2
+  // below and 8 above, flat triangles beside it. (0, 0.05) lies in a triangle of node 8;
+  // (0, 0.15), though nearest to (0, 0), in a triangle with neither as a corner: refused, saying so.
+  const auto thin_probe = [&](const std::string& at) { return probe_in("thin_crack_v22.msh", at); };
+  const Model near = test::make_model(thin_probe("[0.0, 0.05]"));
+  REQUIRE(near.probes().size() == 1);
+  CHECK(near.mesh().nodes[near.probes()[0]].norm() < 1e-12);
+  const std::vector<int> above = near.mesh().cells_holding({0.0, 0.05, 0});
+  REQUIRE(above.size() == 1);
+  const std::vector<int>& cell = near.mesh().cells[above[0]];
+  CHECK(std::find(cell.begin(), cell.end(), near.probes()[0]) != cell.end());
+  CHECK_THROWS_WITH(test::make_model(thin_probe("[0.0, 0.15]")),
+                    Catch::Contains("lies in a cell with neither as a corner (move it nearer the node you mean)"));
 }
 
 TEST_CASE("bodies and body-body interfaces that cannot be are refused, naming the setting and the node", "[bodies]") {
