@@ -54,9 +54,9 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
           if (mesh.cell_body[c] == body && in_cell(node, int(c))) return true;
         return false;
       };
-      const auto body_of = [&](int node) {
-        for (int b = 0; b < static_cast<int>(mesh.body_names.size()); ++b)
-          if (in_body(node, b)) return b;
+      const auto body_of = [&](int node) {  // cells are listed body by body: the first body of the node
+        for (std::size_t c = 0; c < mesh.cells.size(); ++c)
+          if (in_cell(node, int(c))) return mesh.cell_body[c];
         return -1;
       };
       const std::vector<int> holding = mesh.bodies_holding(p);
