@@ -34,15 +34,15 @@ const char* paper_ratios = "the paper: 161.7 s / 66.8 s = 2.4 on B1, 497.4 s / 1
 
 /// Per integrator, the cases of each solver in the paper's layout: rows per solver, columns
 /// the steps 1, 10, 40, 60, 100, 150, 200.
-void print_tables(std::ostream& out, const std::vector<CompareCase>& cases) {
+void print_tables(std::ostream& out, const std::vector<const CompareCase*>& cases) {
   std::vector<Method> integrators;
-  for (const CompareCase& c : cases)
-    if (std::find(integrators.begin(), integrators.end(), c.config.integrator.method) == integrators.end())
-      integrators.push_back(c.config.integrator.method);
+  for (const CompareCase* c : cases)
+    if (std::find(integrators.begin(), integrators.end(), c->config.integrator.method) == integrators.end())
+      integrators.push_back(c->config.integrator.method);
   for (Method m : integrators) {
     std::vector<const CompareCase*> group;
-    for (const CompareCase& c : cases)
-      if (c.config.integrator.method == m) group.push_back(&c);
+    for (const CompareCase* c : cases)
+      if (c->config.integrator.method == m) group.push_back(c);
     out << "\n" << method_name(m);
     if (m != Method::Arkode) out << ", " << group.front()->config.time.steps << " fixed steps";
     out << " (the paper's Tables 1-2 layout)\n";
@@ -121,17 +121,18 @@ std::vector<CompareCase> run_comparison(const Config& cfg, const std::vector<std
 }
 
 void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
-  std::vector<CompareCase> cases;
+  std::vector<const CompareCase*> cases;  // those that ran
   for (const CompareCase& c : all)
     if (c.failure.empty())
-      cases.push_back(c);
+      cases.push_back(&c);
     else
       out << c.label << ": run failed: " << c.failure << "\n";
   if (cases.empty()) return;
-  const std::vector<int>& watched = cases.front().result.watched;
+  const CompareCase& first = *cases.front();
+  const std::vector<int>& watched = first.result.watched;
   // Columns as wide as the longest case's label and two spaces (a label runs into none).
   int width = 20;
-  for (const CompareCase& c : cases) width = std::max(width, static_cast<int>(c.label.size()) + 2);
+  for (const CompareCase* c : cases) width = std::max(width, static_cast<int>(c->label.size()) + 2);
   const auto right = [&](const std::string& text) {  // right-aligned in its column
     return std::string(std::max(0, width - static_cast<int>(text.size())), ' ') + text;
   };
@@ -139,16 +140,16 @@ void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
   std::vector<std::pair<std::string, std::string>> rows;  // label, cells: printed once the labels' width is known
   auto row = [&](const std::string& label, auto&& value_of) {
     std::string cells;
-    for (const CompareCase& c : cases) cells += value_of(c);
+    for (const CompareCase* c : cases) cells += value_of(*c);
     rows.emplace_back(label, cells);
   };
   row("", [&](const CompareCase& c) { return right(c.label); });
-  const std::vector<Snapshot>& ref = cases.front().result.snapshots;
+  const std::vector<Snapshot>& ref = first.result.snapshots;
   for (std::size_t k = 0; k < ref.size(); ++k) {
     for (std::size_t w = 0; w < watched.size(); ++w)
-      row("beta at " + cases.front().config.output.watch[w].name + ", t = " + fmt("%g", ref[k].t),
+      row("beta at " + first.config.output.watch[w].name + ", t = " + fmt("%g", ref[k].t),
           [&](const CompareCase& c) { return cell("%.6e", c.result.snapshots[k].beta[watched[w]]); });
-    row("max |beta - " + cases.front().label + "|, t = " + fmt("%g", ref[k].t), [&](const CompareCase& c) {
+    row("max |beta - " + first.label + "|, t = " + fmt("%g", ref[k].t), [&](const CompareCase& c) {
       return cell("%.3e", (c.result.snapshots[k].beta - ref[k].beta).cwiseAbs().maxCoeff());
     });
   }
@@ -166,8 +167,8 @@ void print_comparison(std::ostream& out, const std::vector<CompareCase>& all) {
   for (const auto& [label, cells] : rows) label_width = std::max(label_width, label.size() + 1);
   for (const auto& [label, cells] : rows) out << label << std::string(label_width - label.size(), ' ') << cells << "\n";
   print_tables(out, cases);
-  for (const CompareCase& c : cases)
-    for (const std::string& w : c.result.warnings) out << c.label << ": warning: " << w << "\n";
+  for (const CompareCase* c : cases)
+    for (const std::string& w : c->result.warnings) out << c->label << ": warning: " << w << "\n";
 }
 
 }  // namespace rccm

@@ -81,10 +81,10 @@ std::vector<int> nearest(const Config& cfg, const Mesh& mesh, const std::vector<
           << " as to mesh node " << candidates[shared[1]] << " of " << name(shared[1]) << " (they share that point), and lies "
           << (holding.empty() ? "in no body"
               : holding.size() > 1 ? "on the boundary they share"
-              : crack ? (in.empty() ? "in a cell with neither as a corner (move it nearer the node you mean)"
+              : crack ? (in.empty() ? "in a cell with neither as a corner"
                                     : "on the crack between them, in body '" + mesh.body_names[holding[0]] + "'")
               : "in body '" + mesh.body_names[holding[0]] + "'")
-          << "; move it into the body, or the side of the crack, you mean";
+          << (crack && in.empty() ? "; move it nearer the node you mean" : "; move it into the body, or the side of the crack, you mean");
         throw InputError(m.str());
       }
       best = in[0];
