@@ -1,5 +1,7 @@
 // The FE body, the condensation and the contact solve against exact and direct solutions.
 #include "helpers.hpp"
+#include "rccm/base/errors.hpp"
+#include "rccm/base/memory.hpp"
 #include "rccm/contact/bipotential_solver.hpp"
 #include "rccm/contact/newton_solver.hpp"
 #include "rccm/contact/solver_tuning.hpp"
@@ -414,4 +416,28 @@ solver = { tolerance = 1.0e-12; };
     CHECK(c.status == a.status);
     previous_dense = &a, previous_compressed = &b;
   }
+}
+
+TEST_CASE("a dense interface larger than the machine's memory is refused before assembly naming the setting", "[model]") {
+  // B1 on 100 000 x 1 cells: m = 2 x 100 001 interface rows. Kept dense (compressed_min_nodes
+  // above the node count), W0 and its factor block take 2 x 8 m^2 bytes = 640 GB; with the
+  // exact step's three more matrices 5 x 8 m^2 = 1.6 TB.
+  const double m = 2 * 100001.0;
+  if (available_memory() > 5 * 8 * m * m) {
+    WARN("this machine has " << available_memory() / 1e9 << " GB available: the refusal cannot be checked here");
+    return;
+  }
+  const std::vector<std::string> dense = {"mesh.nx=100000", "mesh.ny=1", "solver.compressed_min_nodes=1000000"};
+  std::vector<std::string> exact = dense;
+  exact.push_back("solver.active_set_max_nodes=1000000");
+  const auto refusal = [](const std::vector<std::string>& overrides) {
+    const Config cfg = load_config(test::shipped("b1.cfg"), overrides);
+    return Catch::Contains(cfg.where("interface.boundary") + ": 100001 contact nodes (dense interface operators)");
+  };
+  CHECK_THROWS_AS(test::make_model(load_config(test::shipped("b1.cfg"), dense)), InputError);
+  CHECK_THROWS_WITH(test::make_model(load_config(test::shipped("b1.cfg"), dense)),
+                    refusal(dense) && Catch::Contains("needs about 640 GB") &&
+                        Catch::Contains("solver.compressed_min_nodes below the contact node count"));
+  CHECK_THROWS_WITH(test::make_model(load_config(test::shipped("b1.cfg"), exact)),
+                    refusal(exact) && Catch::Contains("needs about 1.6e+03 GB"));
 }
