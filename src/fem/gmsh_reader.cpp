@@ -380,7 +380,8 @@ class Reader {
     return (x[cell[1]] - o).cross(x[cell[hex ? 3 : 2]] - o).dot(x[cell[hex ? 4 : 3]] - o);
   }
 
-  /// Physical groups below the bodies' dimension name node sets.
+  /// Physical groups below the bodies' dimension name node sets; a curve's (2D) or surface's
+  /// (3D) elements are the facets its set loads or bonds.
   void read_node_sets() {
     for (int dim = m_.dim - 1; dim >= 0; --dim) {
       const std::string kind = physical(dim);
@@ -393,6 +394,7 @@ class Reader {
         gmsh::model::getEntitiesForPhysicalGroup(d, tag, entities);
         std::vector<int> set;
         std::vector<char> in_set(m_.nodes.size(), 0);  // a node once, in the order the elements list them
+        std::vector<std::vector<int>> elements_of_set;  // facets (d = dim - 1): sorted node lists
         for (int e : entities) {
           std::vector<int> types;
           std::vector<std::vector<std::size_t>> elements, nodes;
@@ -400,16 +402,24 @@ class Reader {
           for (std::size_t t = 0; t < types.size(); ++t) {
             if (!(types[t] == 15 || types[t] == 1 || types[t] == 2 || types[t] == 3))  // point, line, triangle, quad
               fail(kind + " '" + name + "' has elements of higher order: mesh with Mesh.ElementOrder = 1");
-            for (std::size_t tag_of_node : nodes[t]) {
-              const auto it = index_.find(tag_of_node);
+            const std::size_t per_element = types[t] == 15 ? 1 : types[t] == 1 ? 2 : std::size_t(types[t] + 1);
+            for (std::size_t k = 0; k < nodes[t].size(); ++k) {
+              const auto it = index_.find(nodes[t][k]);
               if (it == index_.end())
                 fail(kind + " '" + name + "' has a node on no cell of a body: it must lie on the boundary of a " + physical(m_.dim));
               if (!in_set[it->second]) in_set[it->second] = 1, set.push_back(it->second);
+              if (d != m_.dim - 1) continue;
+              if (k % per_element == 0) elements_of_set.emplace_back();
+              elements_of_set.back().push_back(it->second);
             }
           }
         }
         if (set.empty()) fail(kind + " '" + name + "' has no nodes");
         m_.node_sets[name] = set;
+        if (d != m_.dim - 1) continue;
+        for (std::vector<int>& element : elements_of_set) std::sort(element.begin(), element.end());
+        std::sort(elements_of_set.begin(), elements_of_set.end());
+        m_.set_elements[name] = std::move(elements_of_set);
       }
     }
   }

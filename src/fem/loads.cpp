@@ -16,8 +16,10 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const
     const LoadParams& p = cfg.loads[k];
     const std::string where = cfg.where(p.path + ".node_set") + ": ";
     const std::vector<int>* set = nullptr;
+    std::vector<std::vector<int>> facets;  // the set's boundary facets: where a traction or pressure acts
     try {
       set = &mesh.node_set(p.node_set);
+      facets = mesh.facets_of(p.node_set);
     } catch (const InputError& e) {
       throw InputError(where + e.what());
     }
@@ -25,7 +27,7 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const
     LoadCase lc{p.amplitude, Eigen::VectorXd::Zero(ndof), Eigen::VectorXd::Zero(ndof), {}, {}, {}, 0};
     lc.nodes = static_cast<int>(set->size());
     if (p.kind == LoadKind::Pressure) {
-      const std::vector<Eigen::Vector3d> outward = mesh.outward_normals(*set);
+      const std::vector<Eigen::Vector3d> outward = mesh.outward_normals(*set, facets);
       for (std::size_t i = 0; i < set->size(); ++i)
         for (int x = 0; x < mesh.dim; ++x) lc.dofs.push_back(mesh.dof((*set)[i], x)), lc.along.push_back(-outward[i][x]);
     } else {
@@ -52,21 +54,20 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const
       const auto unit_load = [&](const Eigen::Vector3d& outward, int x) {
         return p.kind == LoadKind::Pressure ? -outward[x] : double(x == p.component);
       };
-      std::size_t facets = 0;
+      if (facets.empty())
+        throw InputError(where + "node set '" + p.node_set + "' has no boundary " + (mesh.dim == 3 ? "face" : "edge") +
+                         " to carry a " + (p.kind == LoadKind::Pressure ? "pressure" : "traction"));
       if (mesh.dim == 3) {  // the set's boundary triangles and quads
-        for (const BoundaryFace& f : mesh.boundary_faces(*set))
-          for (std::size_t a = 0; a < f.nodes.size(); ++a, ++facets)
+        for (const BoundaryFace& f : mesh.boundary_faces(facets))
+          for (std::size_t a = 0; a < f.nodes.size(); ++a)
             for (int x = 0; x < 3; ++x) lc.force[mesh.dof(f.nodes[a], x)] += unit_load(f.outward, x) * f.weights[a];
       } else {
-        for (const BoundaryEdge& e : mesh.boundary_edges(*set))
-          for (int x = 0; x < 2; ++x, ++facets) {
+        for (const BoundaryEdge& e : mesh.boundary_edges(facets))
+          for (int x = 0; x < 2; ++x) {
             lc.force[mesh.dof(e.a, x)] += unit_load(e.outward, x) * e.weight_a;
             lc.force[mesh.dof(e.b, x)] += unit_load(e.outward, x) * e.weight_b;
           }
       }
-      if (facets == 0)
-        throw InputError(where + "node set '" + p.node_set + "' has no boundary " + (mesh.dim == 3 ? "face" : "edge") +
-                         " to carry a " + (p.kind == LoadKind::Pressure ? "pressure" : "traction"));
     }
     out.push_back(std::move(lc));
   }

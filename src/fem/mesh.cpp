@@ -42,11 +42,23 @@ std::vector<std::vector<int>> Mesh::facets_within(const std::vector<int>& set) c
   return out;
 }
 
-std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<int>& set) const {
+std::vector<std::vector<int>> Mesh::facets_of(const std::string& name) const {
+  std::vector<std::vector<int>> out = facets_within(node_set(name));
+  const auto own = set_elements.find(name);
+  if (own == set_elements.end()) return out;
+  out.erase(std::remove_if(out.begin(), out.end(), [&](std::vector<int> f) {
+              std::sort(f.begin(), f.end());
+              return !std::binary_search(own->second.begin(), own->second.end(), f);
+            }), out.end());
+  return out;
+}
+
+std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<std::vector<int>>& facets) const {
   RCCM_VERIFY(dim == 2, "boundary edges (2D)");
   std::vector<char> in(nodes.size(), 0);
-  for (int n : set) in[n] = 1;
-  // The cell centre behind each cell edge with both nodes in the set.
+  for (const auto& f : facets)
+    for (int n : f) in[n] = 1;
+  // The cell centre behind each cell edge with both nodes on the facets.
   std::map<std::pair<int, int>, Eigen::Vector3d> centre_of_edge;
   for (const auto& cell : cells) {
     Eigen::Vector3d centre = Eigen::Vector3d::Zero();
@@ -57,7 +69,7 @@ std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<int>& set) cons
     }
   }
   std::vector<BoundaryEdge> out;
-  for (const auto& f : facets_within(set)) {
+  for (const auto& f : facets) {
     BoundaryEdge e;
     e.a = f[0], e.b = f[1];
     const Eigen::Vector3d t = nodes[e.b] - nodes[e.a];
@@ -78,10 +90,10 @@ std::vector<BoundaryEdge> Mesh::boundary_edges(const std::vector<int>& set) cons
   return out;
 }
 
-std::vector<BoundaryFace> Mesh::boundary_faces(const std::vector<int>& set) const {
+std::vector<BoundaryFace> Mesh::boundary_faces(const std::vector<std::vector<int>>& facets) const {
   RCCM_VERIFY(dim == 3, "boundary faces (3D)");
   std::vector<BoundaryFace> out;
-  for (const auto& f : facets_within(set)) {
+  for (const auto& f : facets) {
     RCCM_VERIFY(f.size() == 3 || f.size() == 4, "a 3D boundary facet is a triangle or a quad");
     BoundaryFace face;
     face.nodes = f;
@@ -113,13 +125,14 @@ std::vector<BoundaryFace> Mesh::boundary_faces(const std::vector<int>& set) cons
   return out;
 }
 
-std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) const {
+std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set,
+                                                   const std::vector<std::vector<int>>& facets) const {
   std::vector<Eigen::Vector3d> sum(nodes.size(), Eigen::Vector3d::Zero());
   if (dim == 3)
-    for (const BoundaryFace& f : boundary_faces(set))
+    for (const BoundaryFace& f : boundary_faces(facets))
       for (int n : f.nodes) sum[n] += f.area * f.outward;
   else
-    for (const BoundaryEdge& e : boundary_edges(set)) {
+    for (const BoundaryEdge& e : boundary_edges(facets)) {
       sum[e.a] += e.length * e.outward;
       sum[e.b] += e.length * e.outward;
     }
@@ -128,22 +141,24 @@ std::vector<Eigen::Vector3d> Mesh::outward_normals(const std::vector<int>& set) 
   return out;
 }
 
-std::vector<double> Mesh::tributary_measures(const std::vector<int>& set) const {
+std::vector<double> Mesh::tributary_measures(const std::vector<int>& set,
+                                             const std::vector<std::vector<int>>& facets) const {
   std::vector<double> a(nodes.size(), 0.0);
   if (dim == 3)
-    for (const BoundaryFace& f : boundary_faces(set))
+    for (const BoundaryFace& f : boundary_faces(facets))
       for (std::size_t k = 0; k < f.nodes.size(); ++k) a[f.nodes[k]] += f.weights[k];
   else
-    for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += e.weight_a, a[e.b] += e.weight_b;
+    for (const BoundaryEdge& e : boundary_edges(facets)) a[e.a] += e.weight_a, a[e.b] += e.weight_b;
   std::vector<double> out;
   for (int n : set) out.push_back(a[n]);
   return out;
 }
 
-std::vector<double> Mesh::tributary_lengths(const std::vector<int>& set) const {
-  if (dim == 3) return tributary_measures(set);
+std::vector<double> Mesh::tributary_lengths(const std::vector<int>& set,
+                                            const std::vector<std::vector<int>>& facets) const {
+  if (dim == 3) return tributary_measures(set, facets);
   std::vector<double> a(nodes.size(), 0.0);
-  for (const BoundaryEdge& e : boundary_edges(set)) a[e.a] += 0.5 * e.length, a[e.b] += 0.5 * e.length;
+  for (const BoundaryEdge& e : boundary_edges(facets)) a[e.a] += 0.5 * e.length, a[e.b] += 0.5 * e.length;
   std::vector<double> out;
   for (int n : set) out.push_back(a[n]);
   return out;

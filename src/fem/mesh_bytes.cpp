@@ -67,6 +67,8 @@ std::string pack_mesh(const Mesh& m) {
   b.put(m.dim), b.put(m.source), b.put(m.nodes), b.put(m.cells), b.put(m.cell_body), b.put(m.body_names), b.put(m.facets);
   b.put(m.node_sets.size());
   for (const auto& [name, nodes] : m.node_sets) b.put(name), b.put(nodes);
+  b.put(m.set_elements.size());
+  for (const auto& [name, elements] : m.set_elements) b.put(name), b.put(elements);
   return std::move(b.bytes);
 }
 
@@ -79,6 +81,11 @@ Mesh unpack_mesh(const std::string& bytes) {
     std::string name;
     b.get(name);
     b.get(m.node_sets[name]);
+  }
+  for (b.get(sets); sets > 0; --sets) {
+    std::string name;
+    b.get(name);
+    b.get(m.set_elements[name]);
   }
   RCCM_VERIFY(b.done(), "a mesh's bytes from gmsh's process are longer than the mesh");
   return m;

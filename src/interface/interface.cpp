@@ -7,6 +7,7 @@
 #include <cmath>
 #include <iomanip>
 #include <limits>
+#include <set>
 #include <sstream>
 
 namespace rccm {
@@ -27,8 +28,9 @@ class PairBuilder {
 
   std::vector<ContactPair> build() {
     nodes_ = node_set(p_.boundary, ".boundary");
-    const std::vector<double> a = mesh_.tributary_measures(nodes_), length = mesh_.tributary_lengths(nodes_);
-    outward_ = mesh_.outward_normals(nodes_);
+    facets_ = mesh_.facets_of(p_.boundary);
+    const std::vector<double> a = mesh_.tributary_measures(nodes_, facets_), length = mesh_.tributary_lengths(nodes_, facets_);
+    outward_ = mesh_.outward_normals(nodes_, facets_);
     const std::vector<char> precrack = precracked();
     if (p_.facing == Facing::Body) match_opposite();
     std::vector<ContactPair> pairs;
@@ -55,6 +57,8 @@ class PairBuilder {
 
   /// What the pairs' geometry makes doubtful without being wrong (Interface::notes).
   const std::vector<std::string>& notes() const { return notes_; }
+  /// The boundary facets the interface bonds (Mesh::facets_of its boundary).
+  const std::vector<std::vector<int>>& facets() const { return facets_; }
 
  private:
   [[noreturn]] void fail(const std::string& setting, const std::string& what) const {
@@ -78,14 +82,21 @@ class PairBuilder {
   std::vector<char> precracked() const {
     std::vector<char> out(mesh_.num_nodes(), 0);
     if (p_.precrack.empty()) return out;
-    std::vector<char> in(mesh_.num_nodes(), 0);
-    for (int n : node_set(p_.precrack, ".precrack")) in[n] = 1;
+    node_set(p_.precrack, ".precrack");  // refused if unknown or empty
+    std::set<std::vector<int>> crack;  // the precrack's facets, as sorted node lists
+    for (std::vector<int> f : mesh_.facets_of(p_.precrack)) {
+      std::sort(f.begin(), f.end());
+      crack.insert(f);
+    }
     std::vector<int> edges(mesh_.num_nodes(), 0), cracked(mesh_.num_nodes(), 0);  // facets (2D: edges) at each node
-    for (const std::vector<int>& f : mesh_.facets_within(nodes_))
+    for (const std::vector<int>& f : facets_) {
+      std::vector<int> key = f;
+      std::sort(key.begin(), key.end());
       for (int n : f) {
         ++edges[n];
-        cracked[n] += std::all_of(f.begin(), f.end(), [&](int m) { return in[m] != 0; });
+        cracked[n] += crack.count(key) > 0;
       }
+    }
     bool any = false;
     for (int n : nodes_) {
       out[n] = edges[n] > 0 && cracked[n] == edges[n];
@@ -210,7 +221,7 @@ class PairBuilder {
     double tolerance = p_.tolerance;
     if (tolerance == 0) {  // 1e-3 of the shortest edge of the boundary's facets
       double shortest = std::numeric_limits<double>::infinity();
-      for (const std::vector<int>& f : mesh_.facets_within(nodes_))
+      for (const std::vector<int>& f : facets_)
         for (std::size_t a = 0; a < f.size(); ++a)
           shortest = std::min(shortest, (mesh_.nodes[f[a]] - mesh_.nodes[f[(a + 1) % f.size()]]).norm());
       tolerance = 1e-3 * shortest;
@@ -254,7 +265,7 @@ class PairBuilder {
         << p_.path << ".tolerance";
       fail(".opposite", m.str());
     }
-    const std::vector<Eigen::Vector3d> outward_b = mesh_.outward_normals(other);
+    const std::vector<Eigen::Vector3d> outward_b = mesh_.outward_normals(other, mesh_.facets_of(p_.opposite));
     std::vector<Eigen::Vector3d> by_node(mesh_.num_nodes(), Eigen::Vector3d::Zero());
     for (std::size_t j = 0; j < other.size(); ++j) by_node[other[j]] = outward_b[j];
     for (int n : opposite_) outward_opposite_.push_back(by_node[n]);
@@ -265,6 +276,7 @@ class PairBuilder {
   const InterfaceParams& p_;
   const int law_;
   std::vector<int> nodes_, opposite_;
+  std::vector<std::vector<int>> facets_;
   std::vector<Eigen::Vector3d> outward_, outward_opposite_;
   std::vector<std::string> notes_;
 };
@@ -300,6 +312,7 @@ Interface make_interface(const Mesh& mesh, const Config& cfg) {
       I.pairs.push_back(c);
     }
     I.laws.push_back(law_of(p));
+    I.facets.insert(I.facets.end(), builder.facets().begin(), builder.facets().end());
     I.notes.insert(I.notes.end(), builder.notes().begin(), builder.notes().end());
   }
   const int dim = I.layout.dim;

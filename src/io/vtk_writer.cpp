@@ -91,7 +91,7 @@ void VtkWriter::write_interface(const std::string& file, const InterfaceState& s
   }
   vtp.points(xyz);
   std::vector<std::vector<int>> facets;  // 2D: lines, 3D: triangles and quads, of the interface's facets
-  for (const auto& f : mesh.facets_within(nodes)) {
+  for (const auto& f : I.facets) {
     facets.emplace_back();
     for (int n : f) facets.back().push_back(pair_of_node[n]);
   }

@@ -89,8 +89,8 @@ TEST_CASE("gmsh: a .geo and its MSH 2.2 and 4.1 files are the same mesh, with bo
   CHECK(g.nodes[g.node_set("corner")[0]].isApprox(Eigen::Vector3d(10, 4, 0)));
   CHECK(g.node_set("upper").size() == 33);
   // The boundary edges of a curve carry the outward normal of their body.
-  for (const BoundaryEdge& e : g.boundary_edges(top)) CHECK(e.outward.isApprox(Eigen::Vector3d(0, 1, 0)));
-  for (const BoundaryEdge& e : g.boundary_edges(g.node_set("upper_bottom")))
+  for (const BoundaryEdge& e : g.boundary_edges(g.facets_of("lower_top"))) CHECK(e.outward.isApprox(Eigen::Vector3d(0, 1, 0)));
+  for (const BoundaryEdge& e : g.boundary_edges(g.facets_of("upper_bottom")))
     CHECK(e.outward.isApprox(Eigen::Vector3d(0, -1, 0)));
 }
 

@@ -219,9 +219,9 @@ TEST_CASE("tributary measures are lengths in the plane and ring areas on an axis
     const Mesh m = test::distorted_patch(false, axisymmetric);
     const std::vector<int> bottom = {0, 1, 2}, right = {2, 5, 8};
     double a_bottom = 0, a_right = 0, l_bottom = 0;
-    for (double a : m.tributary_measures(bottom)) a_bottom += a;
-    for (double a : m.tributary_measures(right)) a_right += a;
-    for (double l : m.tributary_lengths(bottom)) l_bottom += l;
+    for (double a : m.tributary_measures(bottom, m.facets_within(bottom))) a_bottom += a;
+    for (double a : m.tributary_measures(right, m.facets_within(right))) a_right += a;
+    for (double l : m.tributary_lengths(bottom, m.facets_within(bottom))) l_bottom += l;
     CHECK(l_bottom == Approx(2.0));
     // The annulus 1 < r < 3 (pi (9 - 1)) and the cylinder r = 3 of height 2 (2 pi 3 2).
     CHECK(a_bottom == Approx(axisymmetric ? M_PI * 8 : 2.0));

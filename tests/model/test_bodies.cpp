@@ -301,3 +301,72 @@ TEST_CASE("both sides of a body-body interface prescribed: an opening runs, a cl
                                     "(its mesh node ") &&
                         Catch::Contains("by 0.03 mm at t = 1 s"));
 }
+
+TEST_CASE("a physical group of two curves or surfaces loads and bonds its own elements only", "[bodies]") {
+  // A 10 x 2 plate one cell thick (Q4, 10 x 1): the group "faces" holds its bottom and top
+  // curves, whose nodes also end the one-cell sides x = 0 and x = 10. A traction x = 1 MPa
+  // on "faces" carries 2 x 10 mm x 1 MPa = 20 N; the sides (2 x 2 mm) are not its elements.
+  const std::string plate = test::write_temp_file("faces_plate.geo", R"(
+Point(1) = {0, 0, 0}; Point(2) = {10, 0, 0}; Point(3) = {10, 2, 0}; Point(4) = {0, 2, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Transfinite Curve{1, 3} = 11; Transfinite Curve{2, 4} = 2; Transfinite Surface{1}; Recombine Surface{1};
+Physical Surface("plate") = {1}; Physical Curve("bottom") = {1}; Physical Curve("faces") = {1, 3};
+)");
+  const std::string law = "Cn = 1e3; Ct = 1e3; w = 10.0; alpha = 0.1; mu = 0.3;";
+  const auto model = [&](const std::string& mesh, const std::string& boundary, const std::string& load, int dim = 2) {
+    return test::make_model(test::config_from_text("mesh = { file = \"" + mesh + "\"; };\n"
+                                                   "material = { E = 1000.0; nu = 0.3; };\n"
+                                                   "interface = { boundary = \"" + boundary + "\"; normal = [0.0, 1.0" +
+                                                   (dim == 2 ? "" : ", 0.0") + "]; " + law + " };\n"
+                                                   "loads = ( " + load + " );\ntime = { T = 1.0; };\n"));
+  };
+  const auto resultant = [](const Model& m, int component) {
+    double sum = 0;
+    for (int n = 0; n < m.mesh().num_nodes(); ++n) sum += m.loads()[0].force[m.mesh().dof(n, component)];
+    return sum;
+  };
+  const std::string traction_x = R"({ node_set = "faces"; type = "traction"; component = "x"; value = 1.0; })";
+  CHECK(resultant(model(plate, "bottom", traction_x), 0) == Approx(20.0).epsilon(1e-14));
+  // A pressure on both faces balances: no net force (the sides would add +-2 N x along x).
+  const Model pressed = model(plate, "bottom", R"({ node_set = "faces"; type = "pressure"; value = 1.0; })");
+  CHECK(std::abs(resultant(pressed, 0)) <= 1e-12);
+  CHECK(std::abs(resultant(pressed, 1)) <= 1e-12);
+
+  // An interface on two parts of the base, x in [0, 3] and [7, 10], the 4 mm between them one
+  // cell long: 6 mm bonded, a = 0.25 mm at x = 3 and x = 7 (half of their one bonded edge), and
+  // the interface's facets (its .vtp cells) are the group's 6 edges.
+  const std::string split = test::write_temp_file("split_base.geo", R"(
+Point(1) = {0, 0, 0}; Point(2) = {3, 0, 0}; Point(3) = {7, 0, 0}; Point(4) = {10, 0, 0};
+Point(5) = {10, 2, 0}; Point(6) = {0, 2, 0};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 5}; Line(5) = {5, 6}; Line(6) = {6, 1};
+Curve Loop(1) = {1, 2, 3, 4, 5, 6}; Plane Surface(1) = {1};
+Transfinite Curve{1, 3} = 7; Transfinite Curve{2} = 2;
+Physical Surface("plate") = {1}; Physical Curve("glue") = {1, 3}; Physical Curve("faces") = {5};
+)");
+  const Model glued = model(split, "glue", traction_x);
+  double bonded = 0;
+  for (const ContactPair& c : glued.interface().pairs) {
+    bonded += c.measure;
+    const double x = glued.mesh().nodes[c.node].x();
+    if (std::abs(x - 3) < 1e-12 || std::abs(x - 7) < 1e-12) CHECK(c.measure == Approx(0.25).margin(1e-9));
+  }
+  CHECK(bonded == Approx(6.0).margin(1e-9));
+  CHECK(glued.interface().facets.size() == 12);
+
+  // 3D: a 4 x 0.5 x 3 plate one H8 thick, "faces" its base and top: a traction x on them
+  // carries 2 x 12 mm^2 x 1 MPa = 24 N, not the four sides' 7 mm^2 more.
+  const std::string slab = test::write_temp_file("faces_slab.geo", R"(
+SetFactory("OpenCASCADE");
+Box(1) = {0, 0, 0, 4, 0.5, 3};
+Transfinite Curve{:} = 3;
+e = 1e-6;
+Transfinite Curve{Curve In BoundingBox{-e, -e, -e, e, 0.5 + e, e}, Curve In BoundingBox{4 - e, -e, -e, 4 + e, 0.5 + e, e},
+                  Curve In BoundingBox{-e, -e, 3 - e, e, 0.5 + e, 3 + e}, Curve In BoundingBox{4 - e, -e, 3 - e, 4 + e, 0.5 + e, 3 + e}} = 2;
+Transfinite Surface{:}; Recombine Surface{:}; Transfinite Volume{:};
+Physical Volume("plate") = {1};
+Physical Surface("base") = Surface In BoundingBox{-e, -e, -e, 4 + e, e, 3 + e};
+Physical Surface("faces") = {Surface In BoundingBox{-e, -e, -e, 4 + e, e, 3 + e}, Surface In BoundingBox{-e, 0.5 - e, -e, 4 + e, 0.5 + e, 3 + e}};
+)");
+  CHECK(resultant(model(slab, "base", traction_x, 3), 0) == Approx(24.0).epsilon(1e-13));
+}

@@ -50,13 +50,13 @@ TEST_CASE("the box's faces: outward normals, areas, consistent nodal weights", "
   for (const auto& [name, normal_area] : faces) {
     const std::vector<int>& set = m.node_set(name);
     double total = 0;
-    for (double a : m.tributary_measures(set)) total += a;
+    for (double a : m.tributary_measures(set, m.facets_of(name))) total += a;
     CHECK(total == Approx(normal_area.second).epsilon(1e-14));
-    for (const Eigen::Vector3d& n : m.outward_normals(set)) CHECK((n - normal_area.first).norm() <= 1e-14);
+    for (const Eigen::Vector3d& n : m.outward_normals(set, m.facets_of(name))) CHECK((n - normal_area.first).norm() <= 1e-14);
   }
   // A node inside the bottom face carries one cell's area (1 x 1 mm), an edge node half, a
   // vertex a quarter.
-  const std::vector<double> a = m.tributary_measures(m.node_set("bottom"));
+  const std::vector<double> a = m.tributary_measures(m.node_set("bottom"), m.facets_of("bottom"));
   const std::vector<int>& bottom = m.node_set("bottom");
   for (std::size_t k = 0; k < bottom.size(); ++k) {
     const Eigen::Vector3d x = m.nodes[bottom[k]];

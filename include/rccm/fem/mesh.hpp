@@ -51,6 +51,10 @@ struct Mesh {
   std::vector<std::string> body_names;           // the bodies (physical surfaces of a gmsh file; "body" for the rectangle)
   std::vector<std::vector<int>> facets;          // boundary facets (edges in 2D; triangles or quads counter-clockwise seen from outside in 3D), each of one cell only
   std::map<std::string, std::vector<int>> node_sets;
+  // The elements of a node set read from a gmsh physical curve (2D) or surface (3D), each as
+  // its sorted node list, sorted: the only boundary facets that set loads or bonds (a facet
+  // joining two of its parts is not one of them).
+  std::map<std::string, std::vector<std::vector<int>>> set_elements;
   Placement placement;
   std::string source;                            // the file it was read from, for messages ("" for the rectangle)
 
@@ -66,23 +70,27 @@ struct Mesh {
   /// Boundary facets whose nodes all belong to `set`.
   std::vector<std::vector<int>> facets_within(const std::vector<int>& set) const;
 
-  /// The boundary edges within `set`, with their outward normals and nodal weights (2D).
-  std::vector<BoundaryEdge> boundary_edges(const std::vector<int>& set) const;
+  /// The boundary facets of the named node set: for a set read from a gmsh physical curve
+  /// (2D) or surface (3D), those among its own elements; for any other, facets_within.
+  std::vector<std::vector<int>> facets_of(const std::string& name) const;
 
-  /// The boundary triangles and quads within `set`, with their outward normals and nodal weights (3D).
-  std::vector<BoundaryFace> boundary_faces(const std::vector<int>& set) const;
+  /// The boundary edges `facets` (2D), with their outward normals and nodal weights.
+  std::vector<BoundaryEdge> boundary_edges(const std::vector<std::vector<int>>& facets) const;
 
-  /// Unit outward normal of the boundary per node of `set`: the average of its facets' in the
-  /// set, weighted by their measure; zero for a node on no such facet.
-  std::vector<Eigen::Vector3d> outward_normals(const std::vector<int>& set) const;
+  /// The boundary triangles and quads `facets` (3D), with their outward normals and nodal weights.
+  std::vector<BoundaryFace> boundary_faces(const std::vector<std::vector<int>>& facets) const;
+
+  /// Unit outward normal of the boundary per node of `set`: the average of its `facets`',
+  /// weighted by their measure; zero for a node on none.
+  std::vector<Eigen::Vector3d> outward_normals(const std::vector<int>& set, const std::vector<std::vector<int>>& facets) const;
 
   /// Consistent (= lumped, for linear edges) measure per node of `set`: int N_i dS over its
-  /// facets in the set, mm (axisymmetric: mm^2, the area of the ring; 3D: mm^2); 0 on none.
-  std::vector<double> tributary_measures(const std::vector<int>& set) const;
+  /// `facets`, mm (axisymmetric: mm^2, the area of the ring; 3D: mm^2); 0 on none.
+  std::vector<double> tributary_measures(const std::vector<int>& set, const std::vector<std::vector<int>>& facets) const;
 
-  /// Half the length of each adjacent edge in `set`, mm (in the plane of the mesh); in 3D the
-  /// tributary area, mm^2 (what a debonded measure sums).
-  std::vector<double> tributary_lengths(const std::vector<int>& set) const;
+  /// Half the length of each adjacent edge of `facets` per node of `set`, mm (in the plane of
+  /// the mesh); in 3D the tributary area, mm^2 (what a debonded measure sums).
+  std::vector<double> tributary_lengths(const std::vector<int>& set, const std::vector<std::vector<int>>& facets) const;
 
   /// The cells that hold `x`, on their boundary too (to 1e-9 of the cell's size).
   std::vector<int> cells_holding(const Eigen::Vector3d& x) const;

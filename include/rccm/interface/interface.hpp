@@ -33,6 +33,7 @@ struct Interface {
   Layout layout;
   std::vector<ContactPair> pairs;
   std::vector<RccmLaw> laws;  // one per config interface
+  std::vector<std::vector<int>> facets;  // the boundary facets bonded (mesh nodes; 2D: edges, 3D: triangles and quads)
   SparseMatrix P;             // rows layout.offset(i) + k: axis k of pair i applied to u_node - u_opposite
   std::vector<std::string> notes;  // doubtful geometry, reported as the run's warnings: a flat foundation
                                    // tilted against its face, pairs bonded across a gap
