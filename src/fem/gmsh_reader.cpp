@@ -361,6 +361,37 @@ class Reader {
       fail(physical(m_.dim) + " '" + group + "' has a cell of zero " + (m_.dim == 2 ? "area" : "volume") + " at " +
            point(m_.nodes[cell[0]], m_.dim));
     }
+    const int corner = folded_corner(cell);
+    if (corner >= 0)
+      fail(physical(m_.dim) + " '" + group + "' has a " + (m_.dim == 2 ? "quadrangle" : "hexahedron") +
+           " that folds at its corner " + point(m_.nodes[cell[corner]], m_.dim) + " (" +
+           (m_.dim == 2 ? "concave there" : "twisted or concave there") +
+           ": its Jacobian is negative, no finite element can be built on it); remesh that region or correct "
+           "the cell's node order in the file");
+  }
+
+  /// The first corner of a Q4 or H8 where the cell folds (the Jacobian of its bilinear or
+  /// trilinear map negative there: a concave or twisted cell), or -1. A Q4's Jacobian is linear
+  /// in the reference coordinates: positive at its corners, positive everywhere.
+  int folded_corner(const std::vector<int>& cell) const {
+    static const int ref[8][3] = {{-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
+                                  {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1}};
+    const int k = static_cast<int>(cell.size());
+    if (k != (m_.dim == 2 ? 4 : 8)) return -1;  // a simplex: its signed measure decides
+    for (int a = 0; a < k; ++a) {
+      Eigen::Matrix3d edges = Eigen::Matrix3d::Identity();  // 2D: the third column stays z
+      double sign = 1;
+      for (int j = 0; j < m_.dim; ++j) {  // the corner across reference coordinate j
+        int b = 0;
+        while (!(ref[b][j] == -ref[a][j] && ref[b][(j + 1) % 3] == ref[a][(j + 1) % 3] &&
+                 ref[b][(j + 2) % 3] == ref[a][(j + 2) % 3]))
+          ++b;
+        edges.col(j) = m_.nodes[cell[b]] - m_.nodes[cell[a]];
+        sign *= -ref[a][j];  // d x / d xi_j at the corner is -ref (x_b - x_a) / 2
+      }
+      if (sign * edges.determinant() < 0) return a;
+    }
+    return -1;
   }
 
   /// Twice the signed area of a 2D cell; 3D: the triple product of the edges from node 0 to

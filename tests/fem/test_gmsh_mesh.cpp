@@ -169,6 +169,11 @@ TEST_CASE("gmsh: a bad mesh file is refused, naming the file and the physical gr
   // gmsh keeps one of the two types and drops the T6 silently: its own nodes are left in no cell.
   refused(fixtures + "mixed_t3_t6_v22.msh", "surface 1 of Physical Surface 'plate' holds 3 node(s) that no cell uses "
           "(node 7 at (1.5, 0)): gmsh may have dropped cells it read");
+  // A concave Q4 (its corners (0, 0), (4, 0), (4, 4), (3, 1): counter-clockwise, of positive
+  // area, but bent inward at (3, 1)) and an H8 whose bottom face is listed reversed, its top
+  // not (turned positive at node 0 by the reader, it folds at another corner): no element.
+  refused(fixtures + "concave_q4_v22.msh", "Physical Surface 'body' has a quadrangle that folds at its corner (3, 1)");
+  refused(fixtures + "twisted_h8_v22.msh", "Physical Volume 'blk' has a hexahedron that folds at its corner");
   refused(geo("syntax.geo", "Point(1) = {0, 0, 0\n"), "syntax error");
   // A coordinate that is no number, or beyond what an assembly can square (as mesh.size).
   refused(fixtures + "node_z_nan.msh", "node 3 lies at (10, 2, nan): the mesh must lie within 1e15 mm of 0");
