@@ -183,8 +183,11 @@ class PairBuilder {
   /// Adhesion across an initial gap: a pair bonded (beta0 > 0) with g0 > 0 has its springs act
   /// across the gap (docs/MODEL.md s2: a bonded interface has g0 = 0).
   void note_bonded_gap(const std::vector<ContactPair>& pairs) {
-    if (p_.facing == Facing::Body) return;  // matched nodes: a gap within the matching tolerance
-    const double tolerance = p_.facing == Facing::Circle ? 1e-6 * p_.radius : 0.0;
+    // Matched nodes of two bodies coincide to round-off: a gap beyond it passed the matching
+    // only by its tolerance (interface.tolerance raised, as its message suggests).
+    const double tolerance = p_.facing == Facing::Circle ? 1e-6 * p_.radius
+                             : p_.facing == Facing::Body ? 1e-6 * shortest_edge()
+                                                         : 0.0;
     std::size_t count = 0, at = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k)
       if (pairs[k].beta0 > 0 && pairs[k].g0 > tolerance) {
@@ -195,8 +198,9 @@ class PairBuilder {
     std::ostringstream m;
     m << cfg_.where(p_.path) << ": " << count << " contact node(s) start bonded across a gap, up to g0 = " << pairs[at].g0
       << " mm at mesh node " << pairs[at].node << " " << point(mesh_.nodes[pairs[at].node], mesh_.dim) << " (beta0 = " << pairs[at].beta0
-      << "): their adhesive springs act across it; a bonded interface touches its foundation (g0 = 0), an open one "
-         "starts with beta0 = 0 (precrack)";
+      << "): their adhesive springs act across it as if the faces touched; a bonded interface touches "
+      << (p_.facing == Facing::Body ? "the other body (its nodes on the other's)" : "its foundation (g0 = 0)")
+      << ", an open one starts with beta0 = 0 (precrack)";
     notes_.push_back(m.str());
   }
 
@@ -214,18 +218,21 @@ class PairBuilder {
     fail(setting, m.str());
   }
 
+  /// The shortest edge of the boundary's facets, mm.
+  double shortest_edge() const {
+    double shortest = std::numeric_limits<double>::infinity();
+    for (const std::vector<int>& f : facets_)
+      for (std::size_t a = 0; a < f.size(); ++a)
+        shortest = std::min(shortest, (mesh_.nodes[f[a]] - mesh_.nodes[f[(a + 1) % f.size()]]).norm());
+    return shortest;
+  }
+
   /// Pairs each node of the boundary with the node of the opposite set at the same place
   /// (conforming meshes), both ways one to one.
   void match_opposite() {
     const std::vector<int>& other = node_set(p_.opposite, ".opposite");
     double tolerance = p_.tolerance;
-    if (tolerance == 0) {  // 1e-3 of the shortest edge of the boundary's facets
-      double shortest = std::numeric_limits<double>::infinity();
-      for (const std::vector<int>& f : facets_)
-        for (std::size_t a = 0; a < f.size(); ++a)
-          shortest = std::min(shortest, (mesh_.nodes[f[a]] - mesh_.nodes[f[(a + 1) % f.size()]]).norm());
-      tolerance = 1e-3 * shortest;
-    }
+    if (tolerance == 0) tolerance = 1e-3 * shortest_edge();
     std::vector<char> in_other(mesh_.num_nodes(), 0);
     for (int n : other) in_other[n] = 1;
     for (int n : nodes_)

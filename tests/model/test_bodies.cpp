@@ -10,7 +10,9 @@
 
 #include <catch2/catch.hpp>
 
+#include <fstream>
 #include <iomanip>
+#include <iterator>
 #include <sstream>
 
 using namespace rccm;
@@ -369,4 +371,32 @@ Physical Surface("base") = Surface In BoundingBox{-e, -e, -e, 4 + e, e, 3 + e};
 Physical Surface("faces") = {Surface In BoundingBox{-e, -e, -e, 4 + e, e, 3 + e}, Surface In BoundingBox{-e, 0.5 - e, -e, 4 + e, 0.5 + e, 3 + e}};
 )");
   CHECK(resultant(model(slab, "base", traction_x, 3), 0) == Approx(24.0).epsilon(1e-13));
+}
+
+TEST_CASE("two bodies bonded across a gap that a raised tolerance let through are noted", "[bodies]") {
+  // tests/meshes/two_blocks.geo with the upper block raised by 0.01 mm: refused at the default
+  // tolerance (1e-3 of the shortest edge, 1 mm), matched with interface.tolerance = 0.02, and
+  // then each bonded pair's spring acts across the gap: noted, the largest gap named.
+  std::ifstream in(fixture);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string flush = "Point(5) = {0, h, 0}; Point(6) = {L, h, 0}; Point(7) = {L, 2 * h, 0}; Point(8) = {0, 2 * h, 0};";
+  REQUIRE(text.find(flush) != std::string::npos);
+  text.replace(text.find(flush), flush.size(),
+               "Point(5) = {0, h + 0.01, 0}; Point(6) = {L, h + 0.01, 0}; Point(7) = {L, 2 * h + 0.01, 0}; "
+               "Point(8) = {0, 2 * h + 0.01, 0};");
+  const std::string raised = test::write_temp_file("two_blocks_gap.geo", text);
+  const auto glued = [&](const std::string& mesh, const std::string& extra) {
+    const Config cfg = test::config_from_text("mesh = { file = \"" + mesh + "\"; };\nmaterial = { E = 1000.0; nu = 0.3; };\n"
+                                              "interface = {" + glue + "Cn = 1e3; " + extra + " };\n"
+                                              "loads = ( { node_set = \"top\"; type = \"force\"; component = \"y\"; value = 0.1; } );\n"
+                                              "time = { T = 1.0; };\n");
+    return make_interface(make_mesh(cfg), cfg).notes;
+  };
+  CHECK_THROWS_WITH(glued(raised, ""), Catch::Contains("raise interface.tolerance"));
+  const std::vector<std::string> notes = glued(raised, "tolerance = 0.02;");
+  REQUIRE(notes.size() == 1);
+  CHECK_THAT(notes[0], Catch::Contains("11 contact node(s) start bonded across a gap, up to g0 = 0.01 mm") &&
+                           Catch::Contains("a bonded interface touches the other body"));
+  CHECK(glued(raised, "tolerance = 0.02; beta0 = 0.0;").empty());  // open from the start: contact across a gap
+  CHECK(glued(fixture, "tolerance = 0.02;").empty());              // the blocks touch
 }
