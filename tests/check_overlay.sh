@@ -14,7 +14,11 @@
 #     load whose force is largest, and names it; the sweep's summary.csv reports its peak;
 #  7. a support whose force exceeds the pull's (one that carries it back): panel (a) draws the
 #     driven load (a value other than 0) all the same;
-#  8. a load held from the start (a confining pressure) with a larger force: the driven one.
+#  8. a load held from the start (a confining pressure) with a larger force: the driven one;
+#  9. runs that load different node sets as the same load (a sweep of loads.[1].node_set): each
+#     run's pull drawn, the axes naming the load by its index; a run without it noted;
+# 10. a 3D run among 2D ones: its debonded area noted and left out of panel (b) (a length's
+#     axis), runs watching different points: panel (c) says each run's first.
 # Usage: check_overlay.sh SWEEP_DIR tools/plot
 set -u
 sweep=$1; plot=$2
@@ -201,6 +205,66 @@ sys.exit(0 if ok else 1)
 EOF
 then pass; else fail "a support $variant drawn instead of the pull"; fi
 done
+
+# 9. and 10. Copies of the cases: the second's pull renamed L1 upper.y, a third without L1;
+#    then the first made 3D (an area instead of a length) and its watched point renamed.
+if PYTHONPATH="$work" $py - "$plot" "$work/mixed" "${cases[@]}" <<'EOF'
+import contextlib, csv, io, os, shutil, sys
+from plot_module import plot, drawn
+out, cases = sys.argv[2], sys.argv[3:5]
+def copy(d, name, rename, watched_as=None):
+    dest = os.path.join(out, name)
+    shutil.copytree(d, dest)
+    for f in ("curves.csv", "history.csv"):
+        path = os.path.join(dest, f)
+        rows = list(csv.reader(open(path)))
+        rows[0] = [rename(h) for h in rows[0]]
+        if f == "history.csv" and watched_as:  # the watched points' columns "W quantity" renamed "W2 quantity"
+            points = [h[: -len(" Radh_n [N]")] for h in rows[0] if h.endswith(" Radh_n [N]")]
+            rows[0] = [next((watched_as + h[len(w):] for w in points if h.startswith(w + " ")), h) for h in rows[0]]
+        keep = [k for k, h in enumerate(rows[0]) if h is not None]
+        with open(path, "w", newline="") as fh:
+            csv.writer(fh).writerows([[r[k] for k in keep] for r in rows])
+    return dest
+first = copy(cases[0], "a", lambda h: h)
+renamed = copy(cases[1], "b", lambda h: h.replace("L1 top_left.y", "L1 upper.y"))
+without = copy(cases[1], "c", lambda h: None if h.startswith("L1 ") else h)
+problems = []
+def overlay(runs):
+    err = io.StringIO()
+    with contextlib.redirect_stderr(err):
+        plot.overlay("/nonexistent-unused", runs)
+    axes = {a.get_title(loc="left")[:3]: a for a in drawn["fig"].axes}
+    return axes, err.getvalue()
+axes, err = overlay([first, renamed, without])
+force = axes["(a)"]
+for d, label in ((first, "L1 top_left.y"), (renamed, "L1 upper.y")):
+    pull = [float(r[f"{label} force [N]"]) for r in csv.DictReader(open(os.path.join(d, "curves.csv")))]
+    if not any(list(l.get_ydata()) == pull for l in force.get_lines()):
+        problems.append(f"panel (a) does not draw {d}'s {label}")
+if "each run's load L1" not in force.get_ylabel():
+    problems.append(f"panel (a)'s force axis is {force.get_ylabel()!r}")
+if f"{without}: has no load L1: not drawn in panel (a)" not in err:
+    problems.append(f"no note for the run without L1: {err!r}")
+# 10. The first run made 3D: plot.Run reads a z column; here its flag and its curves' area.
+solid = copy(cases[0], "d", lambda h: h.replace("debonded length [mm]", "debonded area [mm2]"), watched_as="corner")
+Run = plot.Run
+class Solid(Run):
+    def __init__(self, d):
+        super().__init__(d)
+        self.solid = self.solid or d == solid
+plot.Run = Solid
+axes, err = overlay([solid, renamed])
+if f"{solid}: a 3D run among 2D ones" in err or f"{renamed}: a 2D run among 3D ones" not in err:
+    problems.append(f"mixed dimensions: {err!r}")
+if len(axes["(b)"].get_lines()) != 1 or "area" not in axes["(b)"].get_ylabel():
+    problems.append(f"panel (b): {len(axes['(b)'].get_lines())} lines, axis {axes['(b)'].get_ylabel()!r}")
+if "each run's first watched point" not in axes["(c)"].get_title(loc="left"):
+    problems.append(f"panel (c)'s title {axes['(c)'].get_title(loc='left')!r}")
+print("; ".join(problems))
+sys.exit(1 if problems else 0)
+EOF
+then pass; else fail "runs with different loads, dimensions or watched points"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

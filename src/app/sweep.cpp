@@ -297,7 +297,11 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
   std::vector<std::string> header = {"case"};
   for (const SweepAxis& a : axes) header.push_back(a.path);
   const std::size_t load = reported_load(cases);
-  const std::string named = cases.front().config.loads.empty() ? "" : " " + load_label(cases.front().config, load);
+  // The load's label, or its index alone where the cases load different node sets (a sweep of
+  // loads.[k].node_set): each row is that case's own load k.
+  std::string named = cases.front().config.loads.empty() ? "" : " " + load_label(cases.front().config, load);
+  for (const SweepCase& c : cases)
+    if (!named.empty() && " " + load_label(c.config, load) != named) named = " L" + std::to_string(load) + " (each case's)";
   header.insert(header.end(), {"status", "peak force" + named + " [N]", "t at peak [s]"});
   const bool solid = cases.front().config.mesh.dim() == 3;  // a debonded area, mm2
   for (double t : times) header.push_back("debonded at t=" + csv_number(t) + (solid ? " [mm2]" : " [mm]"));

@@ -217,6 +217,11 @@ TEST_CASE("a sweep reports the driven load's peak, not a support's that carries 
   }
   write_sweep_summary(table, dir.string(), axes, cases);
   CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L0 top_right.x [N]");
+  // A sweep of the load's node set: no one set names the column (the audit's header named the
+  // first case's set above the second case's peak on another).
+  cases[1].config.loads[0].node_set = "upper";
+  write_sweep_summary(table, dir.string(), axes, cases);
+  CHECK(test::read_csv((dir / "summary.csv").string()).header.at(3) == "peak force L0 (each case's) [N]");
   fs::remove_all(dir);
 }
 
