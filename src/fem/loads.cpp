@@ -3,8 +3,23 @@
 #include "rccm/base/errors.hpp"
 
 #include <algorithm>
+#include <cmath>
 
 namespace rccm {
+
+namespace {
+
+/// Whether two piecewise linear amplitudes (constant beyond their ends) are the same function:
+/// equal, to round-off of their largest value, at every breakpoint of either, hence everywhere.
+bool same_function(const TimeFunction& a, const TimeFunction& b) {
+  double scale = 0;
+  for (const TimeFunction* f : {&a, &b})
+    for (double v : f->v) scale = std::max(scale, std::abs(v));
+  const auto agree = [&](double t) { return std::abs(a(t) - b(t)) <= 1e-12 * scale; };
+  return std::all_of(a.t.begin(), a.t.end(), agree) && std::all_of(b.t.begin(), b.t.end(), agree);
+}
+
+}  // namespace
 
 std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const std::vector<int>& axis) {
   const int ndof = mesh.num_dofs();
@@ -41,9 +56,14 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const
           throw InputError(where + "node " + std::to_string(dof / mesh.dim) +
                            " lies on the axis (r = 0), where an axisymmetric model holds u_r = 0: a radial displacement "
                            "there would open a hole at the axis; start the node set's box at r > 0, or prescribe y only");
-        if (owner[dof] >= 0)
+        if (owner[dof] >= 0) {
+          // Two sets meeting at a corner, each held there alike (left x = 0, bottom x = 0): held once.
+          if (same_function(out[owner[dof]].amplitude, p.amplitude)) continue;
           throw InputError(where + "node " + std::to_string(dof / mesh.dim) + " component " + "xyz"[p.component] +
-                           " is already prescribed by loads.[" + std::to_string(owner[dof]) + "]");
+                           " is already prescribed by loads.[" + std::to_string(owner[dof]) + "] to other values: a "
+                           "node holds one displacement; take it out of one of the node sets (a box node set, "
+                           "mesh.node_sets), or give both loads the same value or table");
+        }
         owner[dof] = static_cast<int>(k);
         lc.displacement[dof] = 1.0;
         lc.prescribed.push_back(dof);

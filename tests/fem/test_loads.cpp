@@ -131,3 +131,40 @@ time = { T = 4.0; };
       base + R"(loads = ( { node_set = "top"; type = "displacement"; component = "y"; table = ((0.0, 0.0), (4.0, 0.5)); } );)"));
   CHECK(s.notes().empty());
 }
+
+TEST_CASE("two supports meeting at a corner hold it once if alike and are refused if not", "[loads]") {
+  // left x = 0 and bottom x = 0 share the corner node 0: held once, by loads.[0]; each load's
+  // resultant counts the corner's reaction (it lies in both sets). Different values there
+  // (bottom x = 0.01) cannot both hold: refused, naming both loads and what to do.
+  const auto config = [](const std::string& bottom_x) {
+    return test::config_from_text(R"(
+mesh = { size = [4.0, 2.0]; nx = 4; ny = 2; element = "Q4"; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.3; };
+loads = ( { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "bottom"; type = "displacement"; component = "x"; )" + bottom_x + R"( },
+          { node_set = "top"; type = "displacement"; component = "y"; value = 0.02; } );
+time = { T = 1.0; };
+)");
+  };
+  const Model m = test::make_model(config("value = 0.0;"));
+  const int corner = m.mesh().node_set("bottom_left")[0];
+  const std::vector<int> held = prescribed_dofs(m.loads());
+  CHECK(std::count(held.begin(), held.end(), m.mesh().dof(corner, 0)) == 1);
+  CHECK(std::count(m.loads()[0].prescribed.begin(), m.loads()[0].prescribed.end(), m.mesh().dof(corner, 0)) == 1);
+  CHECK(std::count(m.loads()[1].dofs.begin(), m.loads()[1].dofs.end(), m.mesh().dof(corner, 0)) == 1);
+  CHECK(m.loads()[1].prescribed.size() == 4);  // the bottom's 5 nodes but the corner
+  // The same function written otherwise: alike too (a ramp to 0.01 at T and its table with a
+  // point midway); a table that differs between its points is not.
+  const auto with_ramp = [&](const std::string& bottom_x) {
+    Config cfg = config(bottom_x);
+    cfg.loads[0].amplitude = {{0.0, 1.0}, {0.0, 0.01}};
+    return test::make_model(cfg);
+  };
+  CHECK_NOTHROW(with_ramp("table = ( (0.0, 0.0), (0.5, 0.005), (1.0, 0.01) );"));
+  CHECK_THROWS_WITH(with_ramp("table = ( (0.0, 0.0), (0.5, 0.004), (1.0, 0.01) );"),
+                    Catch::Contains("is already prescribed by loads.[0] to other values"));
+  CHECK_THROWS_WITH(test::make_model(config("value = 0.01;")),
+                    Catch::Contains("loads.[1].node_set: node 0 component x is already prescribed by loads.[0] to other values") &&
+                        Catch::Contains("take it out of one of the node sets"));
+}

@@ -25,7 +25,8 @@ struct LoadCase {
 };
 
 /// Turns the config's loads into load cases; throws InputError "file:line: loads.[k]..."
-/// for an unknown or empty node set, a DOF prescribed by two loads, or a force on a support.
+/// for an unknown or empty node set, a DOF prescribed by two loads to different values (to the
+/// same values, the first holds it), or a force on a support.
 /// `axis`: the DOFs u_r of an axisymmetric mesh's nodes on the axis, held at 0 by the model:
 /// a force there, or a radial displacement other than 0, is refused as well.
 std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const std::vector<int>& axis = {});
