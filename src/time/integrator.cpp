@@ -35,6 +35,7 @@ std::vector<double> merge_times(std::vector<double> t, double T) {
   const double eps = 1e-12 * T;
   t.erase(std::unique(t.begin(), t.end(), [eps](double a, double b) { return std::abs(a - b) <= eps; }), t.end());
   t.erase(std::remove_if(t.begin(), t.end(), [eps](double x) { return x <= eps; }), t.end());
+  if (!t.empty() && T - t.back() <= eps) t.back() = T;  // a time at T to round-off is T: the run ends there
   return t;
 }
 

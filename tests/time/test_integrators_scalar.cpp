@@ -132,4 +132,7 @@ TEST_CASE("the time grids: equal steps with the output times added, stops at the
   CHECK(grid == std::vector<double>{2.5, 3.0, 5.0, 7.5, 10.0});
   CHECK(stop_times(10.0, {3.0, 10.0, 0.0}) == std::vector<double>{0.0, 3.0, 10.0});
   CHECK(stop_times(10.0, {3.0}) == std::vector<double>{3.0, 10.0});
+  // An output time at T to round-off (1e-12 T) is T: the run still ends at T, not short of it.
+  CHECK(stop_times(1.0, {0.5, 0.999999999999}) == std::vector<double>{0.5, 1.0});
+  CHECK(time_grid(1.0, 4, {0.999999999999}) == std::vector<double>{0.25, 0.5, 0.75, 1.0});
 }
