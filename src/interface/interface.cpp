@@ -39,8 +39,7 @@ class PairBuilder {
         fail(".boundary", "node set '" + p_.boundary + "' must be a chain of the mesh's boundary " +
                               (mesh_.dim == 3 ? "faces" : "edges") + ": node " + std::to_string(nodes_[k]) + " at " +
                               point(mesh_.nodes[nodes_[k]], mesh_.dim) + " is on none of the set's own " +
-                              (mesh_.dim == 3 ? "faces" : "edges") + " (a lone point, or a curve inside a body such " +
-                              "as gmsh's Line In Surface, makes none: an interface lies on a body's boundary)");
+                              (mesh_.dim == 3 ? "faces" : "edges") + " (" + why_not_on_boundary(nodes_[k]) + ")");
       ContactPair c;
       c.node = nodes_[k];
       c.measure = a[k];
@@ -216,6 +215,24 @@ class PairBuilder {
       << point(Eigen::Vector3d::Zero() - outward_[k], mesh_.dim) << " (" << std::setprecision(3)
       << std::acos(std::clamp(cosine, -1.0, 1.0)) * 180 / M_PI << " degrees apart, at most 60); " << remedy;
     fail(setting, m.str());
+  }
+
+  /// Why a node of the boundary set lies on none of its facets: the bodies whose cells share it
+  /// are fused there, or the set is a point or lies inside a body.
+  std::string why_not_on_boundary(int node) const {
+    std::vector<int> bodies;
+    for (std::size_t c = 0; c < mesh_.cells.size(); ++c)
+      if (std::find(mesh_.cells[c].begin(), mesh_.cells[c].end(), node) != mesh_.cells[c].end() &&
+          std::find(bodies.begin(), bodies.end(), mesh_.cell_body[c]) == bodies.end())
+        bodies.push_back(mesh_.cell_body[c]);
+    if (bodies.size() > 1)
+      return "bodies '" + mesh_.body_names[bodies[0]] + "' and '" + mesh_.body_names[bodies[1]] +
+             "' share this node: their meshes are fused there (gmsh's BooleanFragments, or one surface shared by "
+             "both), so the face between them is inside the mesh; an interface between two bodies needs each its "
+             "own nodes: leave the solids unfused, give each body its own " +
+             (mesh_.dim == 3 ? "surface" : "curve") + " and set interface.opposite";
+    return std::string("a lone point, or a ") + (mesh_.dim == 3 ? "surface" : "curve") +
+           " inside a body such as gmsh's Line In Surface, makes none: an interface lies on a body's boundary";
   }
 
   /// The shortest edge of the boundary's facets, mm.

@@ -400,3 +400,23 @@ TEST_CASE("two bodies bonded across a gap that a raised tolerance let through ar
   CHECK(glued(raised, "tolerance = 0.02; beta0 = 0.0;").empty());  // open from the start: contact across a gap
   CHECK(glued(fixture, "tolerance = 0.02;").empty());              // the blocks touch
 }
+
+TEST_CASE("an interface on a curve two bodies share is refused saying their meshes are fused there", "[bodies]") {
+  // Two rectangles meshed on one shared curve (as BooleanFragments leaves them): the curve's
+  // edges lie inside the mesh, an interface there has no boundary edge to bond.
+  const std::string fused = test::write_temp_file("fused.geo", R"(
+Point(1) = {0, 0, 0, 1}; Point(2) = {4, 0, 0, 1}; Point(3) = {4, 1, 0, 1}; Point(4) = {0, 1, 0, 1};
+Point(5) = {4, 2, 0, 1}; Point(6) = {0, 2, 0, 1};
+Line(1) = {1, 2}; Line(2) = {2, 3}; Line(3) = {3, 4}; Line(4) = {4, 1}; Line(5) = {3, 5}; Line(6) = {5, 6}; Line(7) = {6, 4};
+Curve Loop(1) = {1, 2, 3, 4}; Plane Surface(1) = {1};
+Curve Loop(2) = {-3, 5, 6, 7}; Plane Surface(2) = {2};
+Physical Surface("lower") = {1}; Physical Surface("upper") = {2}; Physical Curve("glue") = {3}; Physical Curve("base") = {1};
+)");
+  const Config cfg = test::config_from_text("mesh = { file = \"" + fused + "\"; };\nmaterial = { E = 1000.0; nu = 0.3; };\n"
+                                            "interface = { boundary = \"glue\"; normal = [0.0, 1.0]; Cn = 1e3; Ct = 1e3; w = 1.0; mu = 0.3; };\n"
+                                            "loads = ( { node_set = \"base\"; type = \"displacement\"; component = \"y\"; value = 0.0; } );\n"
+                                            "time = { T = 1.0; };\n");
+  CHECK_THROWS_WITH(test::make_model(cfg), Catch::Contains("is on none of the set's own edges (bodies 'lower' and 'upper' share "
+                                                           "this node: their meshes are fused there") &&
+                                               Catch::Contains("set interface.opposite"));
+}
