@@ -8,6 +8,8 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -63,6 +65,16 @@ bool writable(const fs::path& dir) {
   return true;
 }
 }  // namespace
+
+bool interface_time_file(const std::string& name) {
+  const std::string head = "interface_t", tail = ".csv";
+  if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  const std::string time = name.substr(head.size(), name.size() - head.size() - tail.size());
+  const double t = std::strtod(time.c_str(), nullptr);
+  return std::isfinite(t) && csv_number(t) == time;  // the whole of it a number, written as the run writes it
+}
 
 bool holds_results(const std::string& directory) {
   std::error_code ec;

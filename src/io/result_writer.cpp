@@ -2,6 +2,7 @@
 
 #include "rccm/base/errors.hpp"
 #include "rccm/io/atomic_file.hpp"
+#include "rccm/io/output_directory.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -119,11 +120,14 @@ ResultWriter::ResultWriter(const Model& model, const Config& cfg, const std::str
     const auto at = [&](std::size_t k) { return std::strtod(f.at(k).c_str(), nullptr); };
     resumed_steps_.push_back({int(row) - 1, at(0), at(1), long(at(2)), at(3), int(at(4)), at(11)});
   }
+  // The interface files of output times after t go (a run stopped after its checkpoint wrote
+  // them); only files named as the run names them: a user's interface_threshold.vtp stays.
   std::vector<std::string> keep;
   for (double t : resume->output_times) keep.push_back(interface_file(t));
+  std::error_code ec;
   for (const auto& entry : std::filesystem::directory_iterator(directory)) {
     const std::string name = entry.path().filename().string();
-    if (name.rfind("interface_t", 0) == 0 && std::find(keep.begin(), keep.end(), name) == keep.end())
+    if (interface_time_file(name) && entry.is_regular_file(ec) && std::find(keep.begin(), keep.end(), name) == keep.end())
       std::filesystem::remove(entry.path());
   }
   vtk_.resume(resume->t, resume->frame_at_t);

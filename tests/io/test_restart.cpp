@@ -234,6 +234,36 @@ TEST_CASE("a restart takes up CSVs with CRLF line ends and leaves them with LF a
   fs::remove_all(dir);
 }
 
+TEST_CASE("a restart drops the interface files of output times after its checkpoint and no file of the user's", "[restart]") {
+  // A restart removes interface_t<time>.csv of the times after its checkpoint (written by a run
+  // stopped later than its last checkpoint: kill -9), and only those: a user's files whose
+  // names start the same (interface_threshold.vtp), and folders, stay.
+  const std::string dir = fs::temp_directory_path() / "rccm_restart_user_files";
+  fs::remove_all(dir);
+  stop_euler_halfway(dir);
+  REQUIRE(read_checkpoint(dir, b1(dir, euler)).state.t < 7.0);
+  const std::vector<std::string> mine = {"interface_threshold.vtp", "interface_tractions.xlsx", "interface_t0.36.csv.bak",
+                                         "interface_thickness.csv", "interface_t7.csv.old", "interface_tests/notes.txt",
+                                         "interface_t7.5.csv/notes.txt"};  // a folder named as an output time's file
+  for (const std::string& name : mine) {
+    fs::create_directories(fs::path(dir + "/" + name).parent_path());
+    std::ofstream(dir + "/" + name) << "mine\n";
+  }
+  std::ofstream(dir + "/interface_t7.csv") << "t = 7 s, after the checkpoint\n";
+  std::ofstream(dir + "/interface_t1e-05.csv") << "t = 1e-5 s, an output time of another run\n";
+  CHECK(run(b1(dir, euler), true).snapshots.back().t == 10.0);
+  for (const std::string& name : mine) {
+    INFO(name);
+    CHECK(fs::is_regular_file(dir + "/" + name));
+    if (fs::is_regular_file(dir + "/" + name)) CHECK(test::read_text(dir + "/" + name) == "mine\n");
+  }
+  CHECK_FALSE(fs::exists(dir + "/interface_t7.csv"));
+  CHECK_FALSE(fs::exists(dir + "/interface_t1e-05.csv"));
+  for (const char* kept : {"/interface_t3.571.csv", "/interface_t5.143.csv", "/interface_t10.csv"})
+    CHECK(fs::exists(dir + kept));
+  fs::remove_all(dir);
+}
+
 TEST_CASE("a checkpoint reads back bit for bit", "[restart]") {
   const std::string dir = fs::temp_directory_path() / "rccm_checkpoint_bits";
   fs::create_directories(dir);

@@ -20,6 +20,11 @@ bool holds_complete_run(const std::string& directory);
 /// or written, or already holds the results of a run and `force` is false. Creates nothing.
 void check_output_directory(const Config& cfg, bool force);
 
+/// Whether `name` is the interface file of an output time as a run names it: "interface_t",
+/// the time as csv_number writes it, ".csv" (interface_t3.571.csv, interface_t1e-05.csv); not
+/// a user's interface_thickness.csv or interface_t0.36.csv.bak.
+bool interface_time_file(const std::string& name);
+
 /// Refuses (InputError, `option` named) a file that could not be written at `path`: its
 /// directory missing or not writable, or a directory in its place. Checked before the work
 /// whose result it would keep.
