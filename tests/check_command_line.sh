@@ -8,7 +8,7 @@
 #  2. alpha = 0 runs the rate-independent limit in `run` as in `sweep`, and in `compare` once
 #     with a note; a setting the run's methods do not read is said, not reported as a warning;
 #  3. --force starts from an empty result set and leaves other files alone, in plots/ too
-#     (its manifest read with CRLF line ends as well);
+#     (its manifest read with CRLF line ends as well), and files and folders named like rccm's;
 #  4. a closed pipe (rccm run -v | head) does not kill the run: its files and report are complete;
 #  5. a full disk: exit 3, the message names the file that could not be written and does not
 #     claim a report that is not there, nor blames the integrator (ARKODE's step callback); the
@@ -157,6 +157,19 @@ MPLBACKEND=Agg "$src/tools/plot" "$out" >/dev/null 2>&1 || fail "tools/plot on $
 sed -i 's/$/\r/' "$out/plots/.rccm-plots"   # the results copied through another system: CRLF line ends
 check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force: $(cat "$work/err")"
 [ -e "$out/plots" ] && fail "--force left plots/ with only tools/plot's files in it: $(ls -A "$out/plots")"
+# ... rccm's own files are the names it writes, regular files: a user's files and folders
+# named like them stay (mesh_coarse.vtu is no frame, notes.tmp no temporary of rccm's).
+mine=(mesh_coarse.vtu mesh_12.vtu interface_thickness.csv interface_threshold.vtp interface_t0.25.csv.bak notes.tmp
+      history.csv.bak old.tmp/a.txt mesh_0099.vtu/a.txt interface_t0.9.csv/a.txt)
+for f in "${mine[@]}"; do mkdir -p "$(dirname "$out/$f")"; echo mine > "$out/$f"; done
+mkdir -p "$out/interface_0098.vtp"  # an empty folder named as a frame
+stale=(mesh_0042.vtu interface_0042.vtp mesh_10000.vtu interface_t0.2.csv interface_t1e-05.csv
+       history.csv.tmp report.json.tmp mesh_0042.vtu.tmp interface_t0.2.csv.tmp)  # as an earlier run (killed) leaves them
+for f in "${stale[@]}"; do echo stale > "$out/$f"; done
+check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force among a user's files: $(cat "$work/err")"
+for f in "${mine[@]}"; do [ "$(cat "$out/$f" 2>/dev/null)" = mine ] || fail "--force removed the user's $f"; done
+[ -d "$out/interface_0098.vtp" ] || fail "--force removed the user's empty folder interface_0098.vtp"
+for f in "${stale[@]}"; do [ -e "$out/$f" ] && fail "--force left the earlier run's $f"; done
 
 # 4. A closed pipe.
 out=$work/pipe

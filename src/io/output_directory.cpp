@@ -8,6 +8,8 @@
 #include <sys/file.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -21,18 +23,26 @@ namespace {
 // The files that mark a directory as holding a run's results.
 const char* const result_marks[] = {"history.csv", "report.txt", "results.pvd"};
 
-/// Whether a file name is one rccm writes into an output directory.
-bool result_file(const std::string& name) {
-  const auto starts = [&](const char* p) { return name.rfind(p, 0) == 0; };
-  const auto ends = [&](const char* p) {
-    const std::string e(p);
-    return name.size() >= e.size() && name.compare(name.size() - e.size(), e.size(), e) == 0;
-  };
+/// Whether `name` is head, a frame number (four digits or more, as VtkWriter numbers its
+/// frames), tail: mesh_0003.vtu, not mesh_coarse.vtu.
+bool frame_file(const std::string& name, const std::string& head, const std::string& tail) {
+  if (name.size() < head.size() + 4 + tail.size() || name.compare(0, head.size(), head) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return false;
+  const std::string number = name.substr(head.size(), name.size() - head.size() - tail.size());
+  return std::all_of(number.begin(), number.end(), [](unsigned char c) { return std::isdigit(c); });
+}
+
+/// Whether a file name is one rccm writes into an output directory, exactly: its fixed files,
+/// the frames, the interface files of output times, and AtomicFile's temporary of each (NAME.tmp).
+bool result_file(std::string name) {
+  const std::string temporary = ".tmp";
+  if (name.size() > temporary.size() && name.compare(name.size() - temporary.size(), temporary.size(), temporary) == 0)
+    name.resize(name.size() - temporary.size());
   for (const char* f : {"history.csv", "curves.csv", "report.txt", "report.json", "results.pvd", "interface.pvd",
                         "checkpoint.txt"})
     if (name == f) return true;
-  return (starts("interface_t") && ends(".csv")) || (starts("mesh_") && ends(".vtu")) ||
-         (starts("interface_") && ends(".vtp")) || ends(".tmp");
+  return interface_time_file(name) || frame_file(name, "mesh_", ".vtu") || frame_file(name, "interface_", ".vtp");
 }
 
 /// Removes the plots tools/plot wrote into `plots` (the names in its manifest), and the
@@ -119,8 +129,8 @@ OutputDirectory::OutputDirectory(const Config& cfg, bool fresh) : path_(cfg.outp
     throw InputError(where + ": cannot create '" + path_ + "' (" + ec.message() + ")");
   lock_.emplace(path_, where);
   if (!fresh) return;
-  for (const auto& entry : fs::directory_iterator(path_, ec))
-    if (result_file(entry.path().filename().string())) fs::remove_all(entry.path(), ec);
+  for (const auto& entry : fs::directory_iterator(path_, ec))  // files only: a folder named alike is the user's
+    if (result_file(entry.path().filename().string()) && entry.is_regular_file(ec)) fs::remove(entry.path(), ec);
   if (fs::is_directory(fs::path(path_) / "plots", ec)) remove_plots(fs::path(path_) / "plots");
 }
 
