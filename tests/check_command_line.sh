@@ -265,6 +265,10 @@ pid=$!
 for _ in $(seq 100); do [ -f "$work/sw2/alpha=5/history.csv" ] && break; sleep 0.1; done
 check; [ -e "$work/sw2/summary.csv" ] && fail "sweep --force: the earlier summary.csv still there while the cases run"
 kill -s INT "$pid"; wait "$pid"
+# A sweep of output.directory would run its cases alike, each in DIR/<case>: refused, nothing written.
+"$rccm" sweep "$b1" -j 1 "${short[@]}" --set output.directory=x1,x2 -o "$work/swdir" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 2 ] && grep -q "sweep: --set output.directory cannot be swept: the sweep decides each case's directory" "$work/err" \
+  && [ ! -e "$work/swdir" ] && [ ! -e x1 ] || fail "a sweep of output.directory: exit $rc, $(cat "$work/err")"
 # A sweep none of whose cases has results prints no overlay command that would plot nothing.
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.boundary=nowhere,nothere -o "$work/sw3" >"$work/out" 2>&1; rc=$?
 check; [ "$rc" -eq 3 ] && grep -q "plots: none (no case has results)" "$work/out" || fail "a sweep without results: exit $rc, $(cat "$work/out")"

@@ -110,6 +110,9 @@ void split_sweep_settings(const std::vector<std::string>& items, std::vector<Swe
   std::vector<std::string> paths;
   for (const std::string& item : fixed) paths.push_back(item.substr(0, item.find('=')));
   for (const SweepAxis& a : axes) {
+    if (a.path == "output.directory")  // each case's is DIR/<case>: the list would be ignored, its cases alike
+      throw InputError("sweep: --set output.directory cannot be swept: the sweep decides each case's directory "
+                       "(DIR/<case>, named by the case's swept values); -o DIR chooses the sweep's directory, their parent");
     if (std::find(paths.begin(), paths.end(), a.path) != paths.end())
       throw InputError("sweep: --set " + a.path + " is given more than once: give each setting once (a list sweeps it)");
     paths.push_back(a.path);

@@ -55,6 +55,11 @@ TEST_CASE("sweep settings: lists are axes, arrays and single values are fixed", 
   CHECK_THROWS_WITH(split({"interface.alpha=0.1,0.10"}), Catch::Contains("lists 0.1 and 0.10, the same number"));
   CHECK_THROWS_WITH(split({"interface.alpha=1e-1,2,0.1"}), Catch::Contains("lists 1e-1 and 0.1, the same number"));
   CHECK_THROWS_WITH(split({"interface.alpha=0.1 ,0.10"}), Catch::Contains("the same number"));
+  // output.directory: the sweep gives each case its own (DIR/<case>), a list of it would be cases alike.
+  CHECK_THROWS_WITH(split({"interface.alpha=1,2", "output.directory=x1,x2"}),
+                    Catch::Contains("sweep: --set output.directory cannot be swept: the sweep decides each case's directory") &&
+                        Catch::Contains("-o DIR chooses the sweep's directory, their parent"));
+  CHECK_NOTHROW(split({"interface.alpha=1,2", "output.directory=x1"}));  // one value: the sweep's directory is x1-sweep
   CHECK_NOTHROW(split({"mesh.element=\"T3\",\"Q4\"", "interface.alpha=0.1,0.11", "interface.mu=0.1,0.1x"}));
   CHECK_NOTHROW(split({"interface.alpha=1,2", "interface.mu=0.1,0.2", "time.T=5.0"}));
 }
