@@ -269,6 +269,11 @@ kill -s INT "$pid"; wait "$pid"
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set output.directory=x1,x2 -o "$work/swdir" >/dev/null 2>"$work/err"; rc=$?
 check; [ "$rc" -eq 2 ] && grep -q "sweep: --set output.directory cannot be swept: the sweep decides each case's directory" "$work/err" \
   && [ ! -e "$work/swdir" ] && [ ! -e x1 ] || fail "a sweep of output.directory: exit $rc, $(cat "$work/err")"
+# A case whose directory name would be longer than a file system allows (255 bytes): refused
+# before any case runs, the setting named (it failed, and the sweep ended in an internal error).
+"$rccm" sweep "$b1" -j 1 "${short[@]}" --set "interface.alpha=0.1,0.$(printf '1%.0s' $(seq 280))" -o "$work/swlong" >/dev/null 2>"$work/err"; rc=$?
+check; [ "$rc" -eq 2 ] && grep -q "sweep: --set interface.alpha=0.111.*(282 characters): its case's directory name would be 288 bytes" "$work/err" \
+  && [ ! -e "$work/swlong" ] || fail "a sweep with a case directory name too long: exit $rc, $(head -c 400 "$work/err")"
 # A sweep none of whose cases has results prints no overlay command that would plot nothing.
 "$rccm" sweep "$b1" -j 1 "${short[@]}" --set interface.boundary=nowhere,nothere -o "$work/sw3" >"$work/out" 2>&1; rc=$?
 check; [ "$rc" -eq 3 ] && grep -q "plots: none (no case has results)" "$work/out" || fail "a sweep without results: exit $rc, $(cat "$work/out")"

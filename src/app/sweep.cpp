@@ -14,6 +14,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <climits>
 #include <cstdlib>
 #include <atomic>
 #include <cmath>
@@ -148,6 +149,19 @@ std::vector<SweepCase> make_sweep_cases(const std::string& config_file, const st
       if (cases[j].name == cases[k].name)
         throw InputError("sweep: two cases would share the directory " + cases[k].name +
                          " (a '/' in a value becomes '_' there): give values that differ otherwise");
+  // A case's directory is one name of the file system: longer than NAME_MAX (255 bytes), the
+  // case could not run and its directory could not be looked at. Its longest value is named.
+  for (const SweepCase& c : cases)
+    if (c.name.size() > NAME_MAX) {
+      std::size_t k = 0;
+      for (std::size_t j = 1; j < c.values.size(); ++j)
+        if (c.values[j].size() > c.values[k].size()) k = j;
+      const std::string& v = c.values[k];
+      throw InputError("sweep: --set " + axes[k].path + "=" +
+                       (v.size() > 40 ? v.substr(0, 32) + "... (" + std::to_string(v.size()) + " characters)" : v) +
+                       ": its case's directory name would be " + std::to_string(c.name.size()) + " bytes, more than the " +
+                       std::to_string(NAME_MAX) + " a file system allows in a name: give a shorter value");
+    }
   const GmshReuse reuse;  // the cases' geometry read once when no case changes it
   for (SweepCase& c : cases) {
     c.overrides.insert(c.overrides.begin(), fixed.begin(), fixed.end());

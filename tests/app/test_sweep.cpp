@@ -89,6 +89,23 @@ TEST_CASE("sweep cases: a value with a path in it names one directory of the swe
                     Catch::Contains("two cases would share the directory file=\"a_dcb.geo\""));
 }
 
+TEST_CASE("sweep cases: a case directory name longer than a file system allows is refused before any case runs", "[sweep]") {
+  // A case's directory is one name: at most 255 bytes (NAME_MAX). "alpha=" and 249 characters is 255.
+  const std::string fits = "0." + std::string(247, '1'), too_long = fits + "1";
+  const std::string dir = (fs::temp_directory_path() / "rccm_sweep_long_names").string();
+  fs::remove_all(dir);
+  const std::vector<SweepCase> cases = make_sweep_cases(b1, {}, {{"interface.alpha", {"0.1", fits}}}, dir);
+  REQUIRE(cases.size() == 2);
+  CHECK(cases[1].name.size() == 255);
+  CHECK_THROWS_WITH(make_sweep_cases(b1, {}, {{"interface.alpha", {"0.1", too_long}}}, dir),
+                    Catch::Contains("sweep: --set interface.alpha=0.1111") && Catch::Contains("(250 characters)") &&
+                        Catch::Contains("its case's directory name would be 256 bytes, more than the 255 a file system allows"));
+  // Of two axes, the longer value is named (the name joins both).
+  CHECK_THROWS_WITH(make_sweep_cases(b1, {}, {{"interface.mu", {"0.1", "0.3"}}, {"interface.alpha", {"1", fits}}}, dir),
+                    Catch::Contains("sweep: --set interface.alpha=0.1111") && Catch::Contains("would be 262 bytes"));
+  CHECK_FALSE(fs::exists(dir));
+}
+
 TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha", "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep";
   fs::remove_all(dir);
