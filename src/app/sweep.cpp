@@ -250,8 +250,9 @@ void run_sweep(std::vector<SweepCase>& cases, int jobs, bool force) {
 
 std::string overlay_command(const std::string& directory, const std::vector<SweepCase>& cases) {
   std::string runs;
+  std::error_code ec;  // a directory that cannot be looked at (a name too long there) has no results
   for (const SweepCase& c : cases)  // those with results: not a case never started, or stopped while meshed
-    if (std::filesystem::exists(c.config.output.directory + "/curves.csv"))
+    if (std::filesystem::exists(c.config.output.directory + "/curves.csv", ec))
       runs += " " + shell_quoted(c.config.output.directory);
   return runs.empty() ? "" : "tools/plot --overlay " + shell_quoted(directory) + runs;
 }

@@ -106,6 +106,20 @@ TEST_CASE("sweep cases: a case directory name longer than a file system allows i
   CHECK_FALSE(fs::exists(dir));
 }
 
+TEST_CASE("the overlay command names the cases with results and passes over a directory it cannot look at", "[sweep]") {
+  // A case directory too long for the file system it is on (eCryptfs allows 143 bytes in a
+  // name): the case failed, and looking for its curves.csv must not end the sweep.
+  const fs::path dir = fs::temp_directory_path() / "rccm_sweep_overlay";
+  fs::remove_all(dir);
+  std::vector<SweepCase> cases = make_sweep_cases(b1, {}, {{"interface.alpha", {"1", "2"}}}, dir.string());
+  REQUIRE(cases.size() == 2);
+  fs::create_directories(dir / "alpha=2");
+  std::ofstream((dir / "alpha=2" / "curves.csv").string()) << "t [s]\n";
+  cases[0].config.output.directory = (dir / std::string(300, 'a')).string();
+  CHECK(overlay_command(dir.string(), cases) == "tools/plot --overlay '" + dir.string() + "' '" + (dir / "alpha=2").string() + "'");
+  fs::remove_all(dir);
+}
+
 TEST_CASE("alpha study on B1: three cases, peak peel force increases with alpha", "[sweep]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_sweep";
   fs::remove_all(dir);
