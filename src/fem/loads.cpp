@@ -39,7 +39,8 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const
       throw InputError(where + e.what());
     }
     if (set->empty()) throw InputError(where + "node set '" + p.node_set + "' has no nodes");
-    LoadCase lc{p.amplitude, Eigen::VectorXd::Zero(ndof), Eigen::VectorXd::Zero(ndof), {}, {}, {}, 0};
+    LoadCase lc{p.amplitude, Eigen::VectorXd::Zero(ndof), Eigen::VectorXd::Zero(ndof), {}, {}, {}, 0,
+                p.kind == LoadKind::Displacement};
     lc.nodes = static_cast<int>(set->size());
     if (p.kind == LoadKind::Pressure) {
       const std::vector<Eigen::Vector3d> outward = mesh.outward_normals(*set, facets);

@@ -154,6 +154,13 @@ class PairBuilder {
                               "' and '" + p_.opposite + "' do not face each other (their outward normals are not opposite)");
       c.frame = plane_frame(n.normalized());
       c.g0 = c.frame.n.dot(x - mesh_.nodes[c.opposite]);
+      if (c.g0 < -apart_) {  // the bodies overlap there: contact would push them apart at once
+        std::ostringstream m;
+        m << "at contact node " << k << " " << point(x, mesh_.dim) << " the bodies overlap by " << -c.g0 << " mm ('"
+          << p_.boundary << "' lies inside '" << p_.opposite << "'), which " << p_.path
+          << ".tolerance let through: the matched nodes of two bodies lie at the same place; correct the geometry";
+        fail(".opposite", m.str());
+      }
     }
   }
 
@@ -185,7 +192,7 @@ class PairBuilder {
     // Matched nodes of two bodies coincide to round-off: a gap beyond it passed the matching
     // only by its tolerance (interface.tolerance raised, as its message suggests).
     const double tolerance = p_.facing == Facing::Circle ? 1e-6 * p_.radius
-                             : p_.facing == Facing::Body ? 1e-6 * shortest_edge()
+                             : p_.facing == Facing::Body ? apart_
                                                          : 0.0;
     std::size_t count = 0, at = 0;
     for (std::size_t k = 0; k < pairs.size(); ++k)
@@ -249,7 +256,9 @@ class PairBuilder {
   void match_opposite() {
     const std::vector<int>& other = node_set(p_.opposite, ".opposite");
     double tolerance = p_.tolerance;
-    if (tolerance == 0) tolerance = 1e-3 * shortest_edge();
+    const double shortest = shortest_edge();
+    apart_ = 1e-6 * shortest;
+    if (tolerance == 0) tolerance = 1e-3 * shortest;
     std::vector<char> in_other(mesh_.num_nodes(), 0);
     for (int n : other) in_other[n] = 1;
     for (int n : nodes_)
@@ -301,6 +310,7 @@ class PairBuilder {
   const int law_;
   std::vector<int> nodes_, opposite_;
   std::vector<std::vector<int>> facets_;
+  double apart_ = 0;  // body-body: matched nodes further apart than this (1e-6 of the shortest edge) are not at one place
   std::vector<Eigen::Vector3d> outward_, outward_opposite_;
   std::vector<std::string> notes_;
 };

@@ -107,6 +107,11 @@ void check_output_directory(const Config& cfg, bool force) {
   if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir, ec)) throw InputError(where + ": '" + dir.string() + "' is a file, not a directory");
     if (!writable(dir)) throw InputError(where + ": cannot write into '" + dir.string() + "'");
+    // A folder (or link, device) named as a file rccm writes would fail the run where it writes it.
+    for (const auto& entry : fs::directory_iterator(dir, ec))
+      if (result_file(entry.path().filename().string()) && !entry.is_regular_file(ec))
+        throw InputError(where + ": '" + entry.path().string() + "' is not a file but has the name of one rccm writes "
+                         "there; rename or move it, or choose another directory (-o DIR)");
     for (const char* mark : result_marks)
       if (!force && fs::exists(dir / mark, ec))
         throw InputError(where + ": '" + dir.string() + "' already holds the results of a run (" + mark + "); give " +

@@ -18,9 +18,9 @@ BodyState body_state(const Model& model, const InterfaceState& s) {
   b.f_ext = model.stiffness() * b.u - model.interface().P.transpose() * b.r;  // K u = f + P^T r (docs/MODEL.md s1)
   for (const LoadCase& lc : model.loads()) {
     b.value.push_back(lc.amplitude(s.t));
-    // A prescribed displacement's force is the support's reaction; an applied load's is what
-    // it applies (a share on a supported DOF included).
-    const Eigen::VectorXd& f = lc.prescribed.empty() ? Eigen::VectorXd(lc.amplitude(s.t) * lc.force) : b.f_ext;
+    // A prescribed displacement's force is the support's reaction (also where an earlier load
+    // holds its DOFs alike); an applied load's is what it applies (a share on a supported DOF included).
+    const Eigen::VectorXd& f = lc.reaction ? b.f_ext : Eigen::VectorXd(lc.amplitude(s.t) * lc.force);
     double F = 0, u = 0;
     for (std::size_t k = 0; k < lc.dofs.size(); ++k) F += lc.along[k] * f[lc.dofs[k]], u += lc.along[k] * b.u[lc.dofs[k]];
     b.force.push_back(F);

@@ -168,3 +168,27 @@ time = { T = 1.0; };
                     Catch::Contains("loads.[1].node_set: node 0 component x is already prescribed by loads.[0] to other values") &&
                         Catch::Contains("take it out of one of the node sets"));
 }
+
+TEST_CASE("a support whose DOFs an earlier one holds alike reports their reaction as its force", "[loads]") {
+  // bottom_left x = 0 lies within left x = 0: every DOF of it is held by loads.[0], and its
+  // force in curves.csv is still the reaction there (not 0, as an applied load's would be).
+  const Config cfg = test::config_from_text(R"(
+mesh = { size = [4.0, 2.0]; nx = 4; ny = 2; element = "Q4"; };
+material = { E = 1000.0; nu = 0.3; };
+interface = { boundary = "bottom"; Cn = 50.0; Ct = 30.0; w = 0.01; mu = 0.3; };
+loads = ( { node_set = "left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "bottom_left"; type = "displacement"; component = "x"; value = 0.0; },
+          { node_set = "right"; type = "displacement"; component = "x"; value = 0.02; } );
+time = { T = 1.0; };
+integrator = { method = "contact-only"; };
+)");
+  const Model m = test::make_model(cfg);
+  REQUIRE(m.loads()[1].prescribed.empty());
+  BodyState b;
+  RunOptions o;
+  o.observer = [&](const AcceptedStep& a) { b = body_state(m, a.state); };
+  Simulation(cfg, o).run();
+  const int corner = m.mesh().dof(m.mesh().node_set("bottom_left")[0], 0);
+  CHECK(std::abs(b.f_ext[corner]) > 1e-3);
+  CHECK(b.force[1] == Approx(b.f_ext[corner]).epsilon(1e-12));
+}

@@ -223,3 +223,19 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
                                                                  std::string("solver.method=\"") + solver + "\""}))
                   .empty());
 }
+
+TEST_CASE("an output directory holding a folder named as a file rccm writes is refused before the run", "[config]") {
+  // The run would compute to the end and fail where it writes interface_t1.csv (exit 3): it is
+  // refused at once instead, with --force too; a folder of another name is the user's own.
+  const std::filesystem::path dir = std::filesystem::path(RCCM_TEST_TMP) / "folder_named_alike";
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir / "mine" / "sub");
+  Config cfg = test::config_from_text(good);
+  cfg.output.directory = dir.string();
+  CHECK_NOTHROW(check_output_directory(cfg, false));
+  std::filesystem::create_directories(dir / "interface_t1.csv" / "sub");
+  for (bool force : {false, true})
+    CHECK_THROWS_WITH(check_output_directory(cfg, force),
+                      Catch::Contains("interface_t1.csv' is not a file but has the name of one rccm writes there"));
+  std::filesystem::remove_all(dir);
+}

@@ -330,14 +330,15 @@ Physical Surface("plate") = {1}; Physical Curve("bottom") = {1}; Physical Curve(
   };
   const std::string traction_x = R"({ node_set = "faces"; type = "traction"; component = "x"; value = 1.0; })";
   CHECK(resultant(model(plate, "bottom", traction_x), 0) == Approx(20.0).epsilon(1e-14));
-  // A pressure on both faces balances: no net force (the sides would add +-2 N x along x).
+  // A pressure on both faces pushes along y only: no x force at the ends' nodes (the ends'
+  // edges, loaded too, pushed each end node by 1 N along x).
   const Model pressed = model(plate, "bottom", R"({ node_set = "faces"; type = "pressure"; value = 1.0; })");
-  CHECK(std::abs(resultant(pressed, 0)) <= 1e-12);
+  for (int n = 0; n < pressed.mesh().num_nodes(); ++n) CHECK(pressed.loads()[0].force[pressed.mesh().dof(n, 0)] == 0.0);
   CHECK(std::abs(resultant(pressed, 1)) <= 1e-12);
 
   // An interface on two parts of the base, x in [0, 3] and [7, 10], the 4 mm between them one
   // cell long: 6 mm bonded, a = 0.25 mm at x = 3 and x = 7 (half of their one bonded edge), and
-  // the interface's facets (its .vtp cells) are the group's 6 edges.
+  // the interface's facets (its .vtp cells) are the group's 12 edges (6 per stretch).
   const std::string split = test::write_temp_file("split_base.geo", R"(
 Point(1) = {0, 0, 0}; Point(2) = {3, 0, 0}; Point(3) = {7, 0, 0}; Point(4) = {10, 0, 0};
 Point(5) = {10, 2, 0}; Point(6) = {0, 2, 0};
@@ -373,7 +374,7 @@ Physical Surface("faces") = {Surface In BoundingBox{-e, -e, -e, 4 + e, e, 3 + e}
   CHECK(resultant(model(slab, "base", traction_x, 3), 0) == Approx(24.0).epsilon(1e-13));
 }
 
-TEST_CASE("two bodies bonded across a gap that a raised tolerance let through are noted", "[bodies]") {
+TEST_CASE("two bodies apart or overlapping by what a raised tolerance let through: a gap noted and an overlap refused", "[bodies]") {
   // tests/meshes/two_blocks.geo with the upper block raised by 0.01 mm: refused at the default
   // tolerance (1e-3 of the shortest edge, 1 mm), matched with interface.tolerance = 0.02, and
   // then each bonded pair's spring acts across the gap: noted, the largest gap named.
@@ -381,10 +382,14 @@ TEST_CASE("two bodies bonded across a gap that a raised tolerance let through ar
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   const std::string flush = "Point(5) = {0, h, 0}; Point(6) = {L, h, 0}; Point(7) = {L, 2 * h, 0}; Point(8) = {0, 2 * h, 0};";
   REQUIRE(text.find(flush) != std::string::npos);
-  text.replace(text.find(flush), flush.size(),
-               "Point(5) = {0, h + 0.01, 0}; Point(6) = {L, h + 0.01, 0}; Point(7) = {L, 2 * h + 0.01, 0}; "
-               "Point(8) = {0, 2 * h + 0.01, 0};");
-  const std::string raised = test::write_temp_file("two_blocks_gap.geo", text);
+  const auto moved = [&](const std::string& name, const std::string& dy) {
+    std::string geo = text;
+    geo.replace(geo.find(flush), flush.size(),
+                "Point(5) = {0, h + " + dy + ", 0}; Point(6) = {L, h + " + dy + ", 0}; Point(7) = {L, 2 * h + " + dy +
+                    ", 0}; Point(8) = {0, 2 * h + " + dy + ", 0};");
+    return test::write_temp_file(name, geo);
+  };
+  const std::string raised = moved("two_blocks_gap.geo", "0.01");
   const auto glued = [&](const std::string& mesh, const std::string& extra) {
     const Config cfg = test::config_from_text("mesh = { file = \"" + mesh + "\"; };\nmaterial = { E = 1000.0; nu = 0.3; };\n"
                                               "interface = {" + glue + "Cn = 1e3; " + extra + " };\n"
@@ -399,6 +404,9 @@ TEST_CASE("two bodies bonded across a gap that a raised tolerance let through ar
                            Catch::Contains("a bonded interface touches the other body"));
   CHECK(glued(raised, "tolerance = 0.02; beta0 = 0.0;").empty());  // open from the start: contact across a gap
   CHECK(glued(fixture, "tolerance = 0.02;").empty());              // the blocks touch
+  // Lowered into the lower block instead: contact would push the bodies apart at once.
+  CHECK_THROWS_WITH(glued(moved("two_blocks_overlap.geo", "-0.01"), "tolerance = 0.02;"),
+                    Catch::Contains("the bodies overlap by 0.01 mm ('upper_bottom' lies inside 'lower_top')"));
 }
 
 TEST_CASE("an interface on a curve two bodies share is refused saying their meshes are fused there", "[bodies]") {

@@ -15,13 +15,14 @@ struct LoadCase {
   TimeFunction amplitude;
   Eigen::VectorXd force;         // N at amplitude 1
   Eigen::VectorXd displacement;  // mm at amplitude 1 (only prescribed DOFs nonzero)
-  std::vector<int> prescribed;   // DOFs this load prescribes
+  std::vector<int> prescribed;   // DOFs this load prescribes (a DOF an earlier load holds alike: that load's)
   /// The DOFs it acts on (prescribed or loaded) and the direction it acts along at each:
   /// 1 for a component, the unit inward normal's component for a pressure. Its resultant is
   /// sum along_k f[dofs_k], its displacement sum along_k u[dofs_k] / nodes.
   std::vector<int> dofs;
   std::vector<double> along;
   int nodes = 0;
+  bool reaction = false;  // a prescribed displacement: its force is the supports' reaction on its DOFs
 };
 
 /// Turns the config's loads into load cases; throws InputError "file:line: loads.[k]..."

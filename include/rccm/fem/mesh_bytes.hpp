@@ -11,7 +11,7 @@ namespace rccm {
 
 /// What rccm and rccm-gmsh must share to talk: the version and this format's number (a
 /// program of another build answers that it is one).
-inline std::string mesh_bytes_protocol() { return std::string(RCCM_VERSION_STRING) + "/1"; }
+inline std::string mesh_bytes_protocol() { return std::string(RCCM_VERSION_STRING) + "/2"; }
 
 std::string pack_mesh(const Mesh& m);
 /// The mesh of `bytes`; RCCM_VERIFY fails on bytes cut short or too long.
