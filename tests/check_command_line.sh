@@ -160,15 +160,23 @@ check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/
 # ... rccm's own files are the names it writes, regular files: a user's files and folders
 # named like them stay (mesh_coarse.vtu is no frame, notes.tmp no temporary of rccm's).
 mine=(mesh_coarse.vtu mesh_12.vtu interface_thickness.csv interface_threshold.vtp interface_t0.25.csv.bak notes.tmp
-      history.csv.bak old.tmp/a.txt mesh_0099.vtu/a.txt interface_t0.9.csv/a.txt)
+      history.csv.bak old.tmp/a.txt)
 for f in "${mine[@]}"; do mkdir -p "$(dirname "$out/$f")"; echo mine > "$out/$f"; done
-mkdir -p "$out/interface_0098.vtp"  # an empty folder named as a frame
+# A folder bearing the name of a file rccm writes would fail the run where it writes it:
+# refused before the run (exit 2), everything left as it was.
+for folder in mesh_0099.vtu/a.txt interface_t0.9.csv/a.txt interface_0098.vtp; do
+  mkdir -p "$out/$folder"
+  check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err"; rc=$?
+  [ "$rc" -eq 2 ] && grep -q "is not a file but has the name of one rccm writes there" "$work/err" ||
+    fail "--force beside a folder $folder: exit $rc ($(cat "$work/err"))"
+  [ -e "$out/history.csv" ] && [ -d "$out/$folder" ] || fail "--force beside a folder $folder: files changed"
+  rm -rf "${out:?}/${folder%%/*}"
+done
 stale=(mesh_0042.vtu interface_0042.vtp mesh_10000.vtu interface_t0.2.csv interface_t1e-05.csv
        history.csv.tmp report.json.tmp mesh_0042.vtu.tmp interface_t0.2.csv.tmp)  # as an earlier run (killed) leaves them
 for f in "${stale[@]}"; do echo stale > "$out/$f"; done
 check; "$rccm" run "$b1" -q --force "${short[@]}" -o "$out" >/dev/null 2>"$work/err" || fail "--force among a user's files: $(cat "$work/err")"
 for f in "${mine[@]}"; do [ "$(cat "$out/$f" 2>/dev/null)" = mine ] || fail "--force removed the user's $f"; done
-[ -d "$out/interface_0098.vtp" ] || fail "--force removed the user's empty folder interface_0098.vtp"
 for f in "${stale[@]}"; do [ -e "$out/$f" ] && fail "--force left the earlier run's $f"; done
 
 # 4. A closed pipe.
