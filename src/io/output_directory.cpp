@@ -107,11 +107,7 @@ void check_output_directory(const Config& cfg, bool force) {
   if (fs::exists(dir, ec)) {
     if (!fs::is_directory(dir, ec)) throw InputError(where + ": '" + dir.string() + "' is a file, not a directory");
     if (!writable(dir)) throw InputError(where + ": cannot write into '" + dir.string() + "'");
-    // A folder (or link, device) named as a file rccm writes would fail the run where it writes it.
-    for (const auto& entry : fs::directory_iterator(dir, ec))
-      if (result_file(entry.path().filename().string()) && !entry.is_regular_file(ec))
-        throw InputError(where + ": '" + entry.path().string() + "' is not a file but has the name of one rccm writes "
-                         "there; rename or move it, or choose another directory (-o DIR)");
+    check_result_names(cfg);
     for (const char* mark : result_marks)
       if (!force && fs::exists(dir / mark, ec))
         throw InputError(where + ": '" + dir.string() + "' already holds the results of a run (" + mark + "); give " +
@@ -124,6 +120,14 @@ void check_output_directory(const Config& cfg, bool force) {
   while (!parent.empty() && !fs::exists(parent, ec) && parent != parent.root_path()) parent = parent.parent_path();
   if (!fs::is_directory(parent, ec) || !writable(parent))
     throw InputError(where + ": cannot create '" + dir.string() + "' ('" + parent.string() + "' is not a writable directory)");
+}
+
+void check_result_names(const Config& cfg) {
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(cfg.output.directory, ec))
+    if (result_file(entry.path().filename().string()) && !entry.is_regular_file(ec))
+      throw InputError(cfg.where("output.directory") + ": '" + entry.path().string() + "' is not a file but has the "
+                       "name of one rccm writes there; rename or move it");
 }
 
 OutputDirectory::OutputDirectory(const Config& cfg, bool fresh) : path_(cfg.output.directory) {

@@ -49,6 +49,7 @@ Recorder::Recorder(const Config& cfg, RunOptions options)
     return;
   }
   resume_ = std::make_unique<Checkpoint>(read_checkpoint(cfg.output.directory, cfg));
+  check_result_names(cfg);
   if (resume_->state.t >= cfg.time.T && holds_complete_run(cfg.output.directory))  // not a run cut off writing its end
     throw InputError(checkpoint_path(cfg.output.directory) + ": the run reached time.T = " + csv_number(cfg.time.T) +
                      " s: there is nothing to go on with, its results stand (to run it again: --force)");

@@ -243,11 +243,22 @@ TEST_CASE("a restart drops the interface files of output times after its checkpo
   stop_euler_halfway(dir);
   REQUIRE(read_checkpoint(dir, b1(dir, euler)).state.t < 7.0);
   const std::vector<std::string> mine = {"interface_threshold.vtp", "interface_tractions.xlsx", "interface_t0.36.csv.bak",
-                                         "interface_thickness.csv", "interface_t7.csv.old", "interface_tests/notes.txt",
-                                         "interface_t7.5.csv/notes.txt"};  // a folder named as an output time's file
+                                         "interface_thickness.csv", "interface_t7.csv.old", "interface_tests/notes.txt"};
   for (const std::string& name : mine) {
     fs::create_directories(fs::path(dir + "/" + name).parent_path());
     std::ofstream(dir + "/" + name) << "mine\n";
+  }
+  // A folder bearing the name of a file rccm writes (an output time's, the next frame's) is
+  // refused before the restart writes anything (the restart failed on it with an internal
+  // error, or would have at the end).
+  for (const char* folder : {"interface_t7.5.csv", "mesh_0099.vtu"}) {
+    INFO(folder);
+    fs::create_directories(dir + "/" + folder + "/sub");
+    const std::string history = test::read_text(dir + "/history.csv");
+    CHECK_THROWS_WITH(run(b1(dir, euler), true),
+                      Catch::Contains(std::string(folder) + "' is not a file but has the name of one rccm writes there"));
+    CHECK(test::read_text(dir + "/history.csv") == history);
+    fs::remove_all(dir + "/" + folder);
   }
   std::ofstream(dir + "/interface_t7.csv") << "t = 7 s, after the checkpoint\n";
   std::ofstream(dir + "/interface_t1e-05.csv") << "t = 1e-5 s, an output time of another run\n";

@@ -20,6 +20,11 @@ bool holds_complete_run(const std::string& directory);
 /// or written, or already holds the results of a run and `force` is false. Creates nothing.
 void check_output_directory(const Config& cfg, bool force);
 
+/// Throws InputError "file:line: output.directory: ..." when an entry of the (existing) output
+/// directory bears the name of a file rccm writes there but is no file (a folder the run would
+/// fail to write over, after computing up to it): before a fresh run and a restart.
+void check_result_names(const Config& cfg);
+
 /// Whether `name` is the interface file of an output time as a run names it: "interface_t",
 /// the time as csv_number writes it, ".csv" (interface_t3.571.csv, interface_t1e-05.csv); not
 /// a user's interface_thickness.csv or interface_t0.36.csv.bak.
