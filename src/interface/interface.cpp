@@ -82,20 +82,14 @@ class PairBuilder {
     std::vector<char> out(mesh_.num_nodes(), 0);
     if (p_.precrack.empty()) return out;
     node_set(p_.precrack, ".precrack");  // refused if unknown or empty
-    std::set<std::vector<int>> crack;  // the precrack's facets, as sorted node lists
-    for (std::vector<int> f : mesh_.facets_of(p_.precrack)) {
-      std::sort(f.begin(), f.end());
-      crack.insert(f);
-    }
+    const std::vector<std::vector<int>> precrack = mesh_.facets_of(p_.precrack);  // as mesh.facets lists them
+    const std::set<std::vector<int>> crack(precrack.begin(), precrack.end());
     std::vector<int> edges(mesh_.num_nodes(), 0), cracked(mesh_.num_nodes(), 0);  // facets (2D: edges) at each node
-    for (const std::vector<int>& f : facets_) {
-      std::vector<int> key = f;
-      std::sort(key.begin(), key.end());
+    for (const std::vector<int>& f : facets_)
       for (int n : f) {
         ++edges[n];
-        cracked[n] += crack.count(key) > 0;
+        cracked[n] += crack.count(f) > 0;
       }
-    }
     bool any = false;
     for (int n : nodes_) {
       out[n] = edges[n] > 0 && cracked[n] == edges[n];

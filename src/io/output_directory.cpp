@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 
 namespace fs = std::filesystem;
 
@@ -23,22 +24,26 @@ namespace {
 // The files that mark a directory as holding a run's results.
 const char* const result_marks[] = {"history.csv", "report.txt", "results.pvd"};
 
+/// What lies between `head` and `tail` in `name`, if it begins with the one and ends with the other.
+std::optional<std::string> between(const std::string& name, const std::string& head, const std::string& tail) {
+  if (name.size() < head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
+      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
+    return std::nullopt;
+  return name.substr(head.size(), name.size() - head.size() - tail.size());
+}
+
 /// Whether `name` is head, a frame number (four digits or more, as VtkWriter numbers its
 /// frames), tail: mesh_0003.vtu, not mesh_coarse.vtu.
 bool frame_file(const std::string& name, const std::string& head, const std::string& tail) {
-  if (name.size() < head.size() + 4 + tail.size() || name.compare(0, head.size(), head) != 0 ||
-      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
-    return false;
-  const std::string number = name.substr(head.size(), name.size() - head.size() - tail.size());
-  return std::all_of(number.begin(), number.end(), [](unsigned char c) { return std::isdigit(c); });
+  const std::optional<std::string> number = between(name, head, tail);
+  return number && number->size() >= 4 &&
+         std::all_of(number->begin(), number->end(), [](unsigned char c) { return std::isdigit(c); });
 }
 
 /// Whether a file name is one rccm writes into an output directory, exactly: its fixed files,
 /// the frames, the interface files of output times, and AtomicFile's temporary of each (NAME.tmp).
 bool result_file(std::string name) {
-  const std::string temporary = ".tmp";
-  if (name.size() > temporary.size() && name.compare(name.size() - temporary.size(), temporary.size(), temporary) == 0)
-    name.resize(name.size() - temporary.size());
+  if (const std::optional<std::string> base = between(name, "", ".tmp"); base && !base->empty()) name = *base;
   for (const char* f : {"history.csv", "curves.csv", "report.txt", "report.json", "results.pvd", "interface.pvd",
                         "checkpoint.txt"})
     if (name == f) return true;
@@ -77,13 +82,10 @@ bool writable(const fs::path& dir) {
 }  // namespace
 
 bool interface_time_file(const std::string& name) {
-  const std::string head = "interface_t", tail = ".csv";
-  if (name.size() <= head.size() + tail.size() || name.compare(0, head.size(), head) != 0 ||
-      name.compare(name.size() - tail.size(), tail.size(), tail) != 0)
-    return false;
-  const std::string time = name.substr(head.size(), name.size() - head.size() - tail.size());
-  const double t = std::strtod(time.c_str(), nullptr);
-  return std::isfinite(t) && csv_number(t) == time;  // the whole of it a number, written as the run writes it
+  const std::optional<std::string> time = between(name, "interface_t", ".csv");
+  if (!time || time->empty()) return false;
+  const double t = std::strtod(time->c_str(), nullptr);
+  return std::isfinite(t) && csv_number(t) == *time;  // the whole of it a number, written as the run writes it
 }
 
 bool holds_results(const std::string& directory) {
@@ -138,7 +140,7 @@ OutputDirectory::OutputDirectory(const Config& cfg, bool fresh) : path_(cfg.outp
     throw InputError(where + ": cannot create '" + path_ + "' (" + ec.message() + ")");
   lock_.emplace(path_, where);
   if (!fresh) return;
-  for (const auto& entry : fs::directory_iterator(path_, ec))  // files only: a folder named alike is the user's
+  for (const auto& entry : fs::directory_iterator(path_, ec))  // files only (a folder named alike was refused before)
     if (result_file(entry.path().filename().string()) && entry.is_regular_file(ec)) fs::remove(entry.path(), ec);
   if (fs::is_directory(fs::path(path_) / "plots", ec)) remove_plots(fs::path(path_) / "plots");
 }
