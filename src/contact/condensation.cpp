@@ -35,17 +35,22 @@ Condensation::Condensation(const ElasticProblem& body, const Interface& interfac
   for (const LoadCase& lc : loads) amplitudes_.push_back(lc.amplitude);
 }
 
-Eigen::VectorXd Condensation::q0(double t) const {
-  Eigen::VectorXd q = Eigen::VectorXd::Zero(Q_.rows());
-  for (std::size_t k = 0; k < amplitudes_.size(); ++k) q += amplitudes_[k](t) * Q_.col(k);
-  return q;
+Eigen::VectorXd Condensation::amplitudes(double t) const {
+  Eigen::VectorXd a(amplitudes_.size());
+  for (std::size_t k = 0; k < amplitudes_.size(); ++k) a[Eigen::Index(k)] = amplitudes_[k](t);
+  return a;
 }
+
+Eigen::VectorXd Condensation::q0(double t) const { return Q_ * amplitudes(t); }
 
 Eigen::VectorXd Condensation::displacement(double t, const Eigen::VectorXd& y) const {
   const Eigen::Index ndof = interface_.P.cols();
-  Eigen::VectorXd u = body_.solve(interface_.P.transpose() * y, Eigen::MatrixXd::Zero(ndof, 1));
-  for (std::size_t k = 0; k < amplitudes_.size(); ++k) u += amplitudes_[k](t) * U_.col(k);
-  return u;
+  return body_.solve(interface_.P.transpose() * y, Eigen::MatrixXd::Zero(ndof, 1)) + U_ * amplitudes(t);
+}
+
+Condensation::Forms Condensation::forms(const Eigen::MatrixXd& L) const {
+  // u = K0^-1 P^T y + U a(t) (the first zero on the prescribed DOFs), so l.u = (P K0^-1 l).y + (U^T l).a.
+  return {interface_.P * body_.solve(L, Eigen::MatrixXd::Zero(L.rows(), L.cols())), U_.transpose() * L};
 }
 
 }  // namespace rccm

@@ -117,9 +117,9 @@ void Recorder::start(BetaOde& ode) {
     return;
   }
   const InterfaceState initial = InterfaceState::initial(*model_);
-  energy_ = std::make_unique<EnergyBalance>(*model_, initial, body_state(*model_, initial), rate_independent());
+  energy_ = std::make_unique<EnergyBalance>(*model_, initial, body_resultants(*model_, initial), rate_independent());
   ode.resume(resume_->state, resume_->step, resume_->progress.solves, resume_->excursion, resume_->springs_beta);
-  body_ = body_state(*model_, resume_->state);
+  body_ = body_resultants(*model_, resume_->state);
   energy_->resume(resume_->state, body_, resume_->energy);
   const RunResult& p = resume_->progress;
   result_.snapshots = p.snapshots;
@@ -139,12 +139,17 @@ void Recorder::attach(BetaIntegrator& integrator) {
   if (resume_) integrator.restore(resume_->diagnostics);
 }
 
+const BodyState& Recorder::fields() {
+  if (body_.u.size() == 0) body_ = body_state(*model_, ode_->committed());
+  return body_;
+}
+
 void Recorder::step(const AcceptedStep& a) {
-  body_ = body_state(*model_, a.state);
+  body_ = body_resultants(*model_, a.state);
   if (!energy_) {
     energy_ = std::make_unique<EnergyBalance>(*model_, a.state, body_, rate_independent());
   } else if (a.midpoint) {
-    const BodyState mid_body = body_state(*model_, *a.midpoint);
+    const BodyState mid_body = body_resultants(*model_, *a.midpoint);
     energy_->add(a.state, body_, a.midpoint, &mid_body);
   } else {
     energy_->add(a.state, body_);
@@ -158,8 +163,10 @@ void Recorder::step(const AcceptedStep& a) {
                            a.counts.max_sweeps, a.cpu_seconds});
   if (writer_) writer_->step(a, body_, energy_->terms());
   rows_step_ = a.step;  // its rows are written: a checkpoint may now stand at it
-  if (writer_ && (a.step == 0 || (cfg_.output.every > 0 && a.step % cfg_.output.every == 0)))
-    writer_->frame(a.state, body_);
+  if (a.step == 0 || (cfg_.output.every > 0 && a.step % cfg_.output.every == 0)) {
+    const BodyState& b = fields();  // a solve of the body: every process joins it (la/parallel.hpp)
+    if (writer_) writer_->frame(a.state, b);
+  }
   if (options_.step_log) log_step(*options_.step_log, a);
   if (options_.progress) progress_line(a, cfg_.time.T);
   note_crawl(a);
@@ -191,7 +198,7 @@ void Recorder::note_deformation(const AcceptedStep& a) {
   if (notes_.deformation_noted || (a.t < notes_.deformation_checked + cfg_.time.T / deformation_checks && a.t < cfg_.time.T))
     return;
   notes_.deformation_checked = a.t;
-  const DeformationExcess e = (*small_strains_)(body_.u, small_strain_limit);
+  const DeformationExcess e = (*small_strains_)(fields().u, small_strain_limit);
   if (e.fraction <= small_strain_fraction) return;
   notes_.deformation_noted = true;
   const Mesh& mesh = model_->mesh();
@@ -239,7 +246,8 @@ bool Recorder::has_snapshot(double t_out) const {
 void Recorder::snapshot() {
   const InterfaceState& s = ode_->committed();
   result_.snapshots.push_back({s.t, s.beta, s.Rbar, s.u, debonded_length(*model_, s.beta)});
-  if (writer_) writer_->output(s, body_);  // the last accepted step is the one at s.t
+  const BodyState& b = fields();  // the last accepted step is the one at s.t; every process joins its solve
+  if (writer_) writer_->output(s, b);
 }
 
 RunResult Recorder::finish() { return close(""); }

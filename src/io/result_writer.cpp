@@ -155,8 +155,7 @@ void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyT
     for (const Eigen::VectorXd* v : {&a.state.u, &Radh, &a.state.Rbar})
       for (double x : normal_first(L, *v, i)) h.push_back(x);
   }
-  for (int node : model_.probes())
-    for (int c = 0; c < model_.mesh().dim; ++c) h.push_back(b.u[model_.mesh().dof(node, c)]);
+  h.insert(h.end(), b.probes.begin(), b.probes.end());
   history_->append(h);
 
   std::vector<double> c = {a.t};

@@ -186,11 +186,6 @@ Model::Model(const Config& cfg, Mesh mesh)
   follow_beta_ = cfg.solver.springs_follow_beta;
   linear_ = cfg.solver.linear;
   D1_ = interface_.spring_stiffness();
-  try {
-    condense(Eigen::VectorXd::Ones(interface_.size()));  // the springs at beta = 1
-  } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
-    throw InputError(cfg.where("loads") + ": " + e.what());
-  }
   g0_.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) g0_[i] = interface_.pairs[i].g0;
   double a_max = 0;
@@ -201,6 +196,11 @@ Model::Model(const Config& cfg, Mesh mesh)
                      "contact node; give a point on the interface");
   probes_ = nearest(cfg, mesh_, cfg.output.probes, "probes", all_nodes, largest_cell(mesh_),
                     "node, more than a cell; give a point in a body");
+  try {
+    condense(Eigen::VectorXd::Ones(interface_.size()));  // the springs at beta = 1
+  } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
+    throw InputError(cfg.where("loads") + ": " + e.what());
+  }
 }
 
 namespace {
@@ -212,10 +212,14 @@ void Model::condense(const Eigen::VectorXd& beta) {
   RCCM_VERIFY(beta.size() == interface_.size(), "one beta per contact pair");
   springs_beta_ = beta;
   const Eigen::VectorXd w = beta.unaryExpr(&springs_weight);
-  condensation_.reset();  // it refers to the body it replaces (and both to the memory of the new ones)
+  forms_.reset();  // each refers to the one before it replaces (and all to the memory of the new ones)
+  condensation_.reset();
   body_.reset();
   body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
   condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress_W0_);
+  std::vector<char> free(K_.rows(), 1);
+  for (int d : supports_) free[d] = 0;
+  forms_ = std::make_unique<BodyForms>(*condensation_, K_, interface_, loads_, free, mesh_, probes_);
   Dref_ = D1_;
   const Layout& L = interface_.layout;
   for (int i = 0; i < interface_.size(); ++i) L.local(Dref_, i) *= w[i];

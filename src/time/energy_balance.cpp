@@ -38,7 +38,7 @@ EnergyBalance::EnergyBalance(const Model& model, const InterfaceState& initial, 
   InterfaceState unloaded = initial;
   unloaded.u.setZero();
   psi0_ = free_energy(unloaded);
-  terms_.strain_energy = 0.5 * initial_body.u.dot(model.stiffness() * initial_body.u);
+  terms_.strain_energy = initial_body.strain_energy;
   terms_.free_energy_change = free_energy(initial) - psi0_;
   terms_.external_work = terms_.strain_energy + terms_.free_energy_change;
   terms_.round_off = round_off();
@@ -72,9 +72,10 @@ void EnergyBalance::add(const InterfaceState& s, const BodyState& b, const Inter
   const Layout& L = I.layout;
   const InterfaceState& o = previous_;
   const BodyState& ob = previous_body_;
-  terms_.external_work += stieltjes<Eigen::VectorXd>(ob.f_ext, mid_body ? &mid_body->f_ext : nullptr, b.f_ext, ob.u,
-                                                     mid_body ? &mid_body->u : nullptr, b.u);
-  terms_.strain_energy = 0.5 * b.u.dot(model_.stiffness() * b.u);
+  // f_ext . du from the loads' work pairs (LoadWork): the same sums as over the full vectors.
+  const LoadWork* mid_work = mid_body ? &mid_body->work : nullptr;
+  terms_.external_work += stieltjes<LoadWork>(ob.work, mid_work, b.work, ob.work, mid_work, b.work);
+  terms_.strain_energy = b.strain_energy;
   terms_.free_energy_change = free_energy(s) - psi0_;
   // Pair i's components [first, first + n) of a stacked vector.
   const auto part = [](const Eigen::VectorXd& v, Eigen::Index first, Eigen::Index n) {

@@ -34,6 +34,15 @@ class Condensation {
   /// Full nodal displacement at time t under the interface force y = Rbar + E u_c.
   Eigen::VectorXd displacement(double t, const Eigen::VectorXd& y) const;
 
+  /// Linear functionals l.u of the full displacement, one per column of L (all DOFs), condensed:
+  /// l.u = g.y + h.a(t), with g = P K0^-1 l (l on the free DOFs) and h_k = l.U_k. One block solve.
+  struct Forms {
+    Eigen::MatrixXd g, h;  // one column per functional
+  };
+  Forms forms(const Eigen::MatrixXd& L) const;
+  /// The loads' amplitudes a_k(t).
+  Eigen::VectorXd amplitudes(double t) const;
+
  private:
   const ElasticProblem& body_;
   const Interface& interface_;

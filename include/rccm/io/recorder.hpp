@@ -71,6 +71,9 @@ class Recorder {
  private:
   bool rate_independent() const { return cfg_.integrator.method == Method::RateIndependent; }
   RunResult close(const std::string& stopped);
+  /// The last accepted step's bulk with its full fields (one solve of the body, at most once a
+  /// step): for frames, output times and the strain check; the other steps need its resultants only.
+  const BodyState& fields();
   void note_crawl(const AcceptedStep& a);
   void note_deformation(const AcceptedStep& a);
   void note(const std::string& text);
@@ -89,7 +92,7 @@ class Recorder {
   std::unique_ptr<OutputDirectory> directory_;
   std::unique_ptr<ResultWriter> writer_;
   std::unique_ptr<EnergyBalance> energy_;
-  BodyState body_;            // of the last accepted step
+  BodyState body_;            // of the last accepted step: its resultants, and its fields once fields() asked
   IntegratorStats earlier_;   // counts of the run a restart continues
   RunResult result_;
   int tiny_steps_ = 0;                    // accepted steps in a row below 1e-7 T

@@ -12,6 +12,7 @@
 #include "rccm/fem/material.hpp"
 #include "rccm/fem/mesh.hpp"
 #include "rccm/interface/interface.hpp"
+#include "rccm/model/body_forms.hpp"
 
 #include <Eigen/Core>
 
@@ -36,6 +37,8 @@ class Model {
   /// interface's geometry (Interface::notes), a load table that goes past time.T.
   const std::vector<std::string>& notes() const { return notes_; }
   const Condensation& condensation() const { return *condensation_; }
+  /// The bulk's figures at a step without a solve of the body, condensed with K0.
+  const BodyForms& body_forms() const { return *forms_; }
   int contact_nodes() const { return interface_.size(); }
   /// Contact node i in a message, findable in the results: "contact node i (mesh node n at
   /// (x, y))". i is the interface's point id in the .vtp and the "node" column of its CSVs;
@@ -63,7 +66,8 @@ class Model {
   /// K0 factorized again with the springs at `beta` (each at least tuning::springs_floor of
   /// D(1)), and W0 and the load responses condensed anew. The contact problem's solution does
   /// not change; its splitting y = Rbar + E u does, and with it the sweeps' rate: a pair that
-  /// has lost its adhesion is no longer held in W0 by a spring that E must take back.
+  /// has lost its adhesion is no longer held in W0 by a spring that E must take back. The body
+  /// forms are condensed anew with it.
   void condense(const Eigen::VectorXd& beta);
   /// Whether K0's springs lag `beta` enough for condense(beta) to pay (solver.springs_follow_beta):
   /// tuning::springs_lag_fraction of the pairs with a spring weaker than 1 / springs_lag_ratio of K0's.
@@ -92,6 +96,7 @@ class Model {
   SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
+  std::unique_ptr<BodyForms> forms_;
   bool follow_beta_ = false, compress_W0_ = false;
   LinearSolverParams linear_;
   std::vector<int> interface_dofs_;  // ordered last in K0's factor, for the dense W0
