@@ -114,12 +114,13 @@ template <int dim>
 bool ActiveSetSystem<dim>::rows_moved(const ContactProblem& pb, const PairRows& kind, int i) const {
   if (kind.status == Status::Stick) return false;  // u rows (Rbar_k = y_k where held): no beta in them
   const Eigen::Index first = Eigen::Index(dim) * i;
+  const double drift = hodlr_ ? tuning::row_drift_compressed : tuning::row_drift;
   bool spring = false;
   for (int k = 0; k < dim; ++k) {
     const Eigen::Index c = first + k;
-    spring = spring || std::abs(pb.Dref[c] - pb.Dbeta[c] - E0_[c]) > tuning::row_drift * pb.Dref[c];
+    spring = spring || std::abs(pb.Dref[c] - pb.Dbeta[c] - E0_[c]) > drift * pb.Dref[c];
   }
-  return kind.status == Status::Separated ? spring : spring || std::abs(pb.mubar[i] - mubar0_[i]) > tuning::row_drift;
+  return kind.status == Status::Separated ? spring : spring || std::abs(pb.mubar[i] - mubar0_[i]) > drift;
 }
 
 template <int dim>

@@ -60,6 +60,12 @@ constexpr double springs_lag_fraction = 0.01;
 /// Relative change of a row's spring (E) or of mubar left to refinement instead of a
 /// low-rank correction.
 constexpr double row_drift = 1e-3;
+/// The same for a compressed W0, whose rows are refactorized in place (HodlrSolver::refactorize:
+/// the changed leaves and the bisections above them) instead of corrected: a refinement step
+/// (a compressed solve and product) costs more against it. B1 x16 (513 contact nodes, user
+/// CPU, two runs each): 33.3 / 34.0 s at 1e-3, 25.3 / 25.7 at 1e-4, 22.9 / 22.5 at 1e-5,
+/// 23.0 / 23.2 at 3e-6, 30.5 / 28.6 at 0.
+constexpr double row_drift_compressed = 1e-5;
 /// A 3D slide direction that turned by less than this (the distance of the unit vectors)
 /// keeps its factorized rows: the turn is left to refinement, as a drift of E or mubar is.
 constexpr double slide_direction_drift = 1e-2;
