@@ -137,7 +137,7 @@ bool ActiveSetSystem<dim>::update(const ContactProblem& pb, const Pattern& patte
     }
     Eigen::MatrixXd Cw, Cy;
     mixing(pb, pattern, Cw, Cy);
-    mixed_->remix_rows(*pb.W0->compressed(), Cw, Cy, granules);
+    mixed_->remix_rows(*pb.W0->compressed_preconditioner(), Cw, Cy, granules);
     hodlr_->refactorize(*mixed_, rows);
     for (int i : changed) record(pb, pattern, i);
     return true;
@@ -200,7 +200,7 @@ void ActiveSetSystem<dim>::factorize(const ContactProblem& pb, const Pattern& pa
   const Eigen::Index m = pb.W0->size();
   hodlr_.reset();
   mixed_.reset();
-  if (const HodlrMatrix* W0 = pb.W0->compressed()) {
+  if (const HodlrMatrix* W0 = pb.W0->compressed_preconditioner()) {
     Eigen::MatrixXd Cw, Cy;
     mixing(pb, pattern, Cw, Cy);
     mixed_.emplace(W0->rows_mixed(Cw, Cy));

@@ -1,5 +1,7 @@
 #include "rccm/contact/delassus.hpp"
 
+#include "rccm/contact/solver_tuning.hpp"
+
 #include "rccm/base/errors.hpp"
 
 namespace rccm {
@@ -33,7 +35,10 @@ void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eige
   }
 }
 
-CompressedDelassus::CompressedDelassus(HodlrMatrix W) : W_(std::move(W)), diagonal_scale_(W_.diagonal_scale()) {}
+CompressedDelassus::CompressedDelassus(HodlrMatrix W)
+    : W_(std::move(W)),
+      preconditioner_(W_.truncated(tuning::hodlr_preconditioner_accuracy)),
+      diagonal_scale_(W_.diagonal_scale()) {}
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
   u = W_.multiply(y);

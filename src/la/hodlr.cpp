@@ -365,6 +365,35 @@ void HodlrMatrix::remix_rows(const HodlrMatrix& A, const Eigen::MatrixXd& Cw, co
   }
 }
 
+HodlrMatrix HodlrMatrix::truncated(double relative_tolerance) const {
+  const double tolerance = relative_tolerance * diagonal_scale();
+  // U V^T = Q (V R^T)^T with U = Q R: the SVD of the small factor V R^T truncates it (truncate).
+  const auto recompress = [&](const Eigen::MatrixXd& U, const Eigen::MatrixXd& V, Eigen::MatrixXd& Ut, Eigen::MatrixXd& Vt) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(U);
+    const Eigen::Index r = U.cols();
+    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(U.rows(), r);
+    const Eigen::MatrixXd R = qr.matrixQR().topRows(r).triangularView<Eigen::Upper>();
+    truncate(Q, V * R.transpose(), tolerance, Ut, Vt);
+  };
+  const std::function<std::unique_ptr<Node>(const Node&)> copy = [&](const Node& a) {
+    auto n = std::make_unique<Node>();
+    n->begin = a.begin, n->end = a.end;
+    if (a.leaf()) {
+      n->dense = a.dense;
+      return n;
+    }
+    n->first = copy(*a.first);
+    n->second = copy(*a.second);
+    recompress(a.U12, a.V12, n->U12, n->V12);
+    recompress(a.U21, a.V21, n->U21, n->V21);
+    return n;
+  };
+  HodlrMatrix out;
+  out.size_ = size_, out.granule_ = granule_;
+  out.root_ = copy(*root_);
+  return out;
+}
+
 int HodlrMatrix::max_rank() const {
   Eigen::Index r = 0;
   visit(*root_, [&](const Node& n) { r = std::max({r, n.U12.cols(), n.U21.cols()}); });

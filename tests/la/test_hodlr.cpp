@@ -227,3 +227,42 @@ TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where
   const Eigen::VectorXd v = Eigen::VectorXd::Random(m);
   CHECK((P.multiply(v) - A * v).norm() <= 100 * relative * scale * v.norm());
 }
+
+TEST_CASE("HODLR: truncated to a looser tolerance the ranks fall and the products stay within it", "[hodlr]") {
+  const int m = 600;
+  const Eigen::MatrixXd A = 1e4 * kernel_matrix(m);  // the tolerance is relative to the diagonal
+  const HodlrMatrix H(A, 1e-14 * 3e4, 32, 2);
+  const double scale = H.diagonal_scale();
+  REQUIRE(scale == Approx(3e4));
+  std::srand(5);
+  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(m, 4);
+  const auto error = [&](const HodlrMatrix& T) {
+    double e = 0;
+    for (int k = 0; k < X.cols(); ++k) e = std::max(e, (T.multiply(X.col(k)) - A * X.col(k)).norm() / X.col(k).norm());
+    return e;
+  };
+  int previous = H.max_rank() + 1;
+  for (double relative : {1e-13, 1e-8, 1e-4, 1e-2}) {
+    INFO("truncated to " << relative);
+    const HodlrMatrix T = H.truncated(relative);
+    CHECK(T.size() == m);
+    CHECK(T.max_rank() < previous);  // each looser tolerance drops rank somewhere
+    previous = T.max_rank();
+    // Each block within relative * scale (Frobenius); the levels' blocks add up on a product.
+    CHECK(error(T) <= 20 * relative * scale);
+    if (relative >= 1e-8) CHECK(error(T) >= 1e-2 * relative * scale);  // truncated to it, not kept whole
+    // Its factorization preconditions A: one refinement step with A's products gains the
+    // truncation's error, relative to the first residual.
+    const Eigen::VectorXd b = X.col(0);
+    const Eigen::VectorXd x0 = HodlrSolver(T).solve(b);
+    const Eigen::VectorXd r = b - A * x0;
+    const Eigen::VectorXd x1 = x0 + HodlrSolver(T).solve(r);
+    CHECK((b - A * x1).norm() <= 1e-2 * r.norm() + 1e-14 * b.norm());
+  }
+  // Exact rank one blocks stay exact at any tolerance below their size.
+  Eigen::VectorXd v = Eigen::VectorXd::LinSpaced(m, 1.0, 2.0);
+  const Eigen::MatrixXd B = v * v.transpose() + 10.0 * Eigen::MatrixXd::Identity(m, m);
+  const HodlrMatrix T = HodlrMatrix(B, 1e-12, 32, 2).truncated(1e-6);
+  CHECK(T.max_rank() == 1);
+  CHECK((T.multiply(X.col(1)) - B * X.col(1)).norm() <= 1e-11 * (B * X.col(1)).norm());
+}

@@ -45,8 +45,11 @@ class DelassusOperator {
   /// need it); nullptr otherwise.
   virtual const Eigen::MatrixXd* dense() const { return nullptr; }
 
-  /// W0 compressed (la/hodlr.hpp) when it is kept so: the exact step mixes its matrix from it.
+  /// W0 compressed (la/hodlr.hpp) when it is kept so: products and sweeps use it.
   virtual const HodlrMatrix* compressed() const { return nullptr; }
+  /// The compression the exact step mixes and factorizes its matrix from: compressed()
+  /// truncated to lower ranks, its error left to the refinement's products with compressed().
+  virtual const HodlrMatrix* compressed_preconditioner() const { return nullptr; }
 };
 
 /// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few hundred pairs.
@@ -81,9 +84,11 @@ class CompressedDelassus final : public DelassusOperator {
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
   const HodlrMatrix* compressed() const override { return &W_; }
+  const HodlrMatrix* compressed_preconditioner() const override { return &preconditioner_; }
 
  private:
   HodlrMatrix W_;
+  HodlrMatrix preconditioner_;  // W_ truncated to tuning::hodlr_preconditioner_accuracy
   double diagonal_scale_;
 };
 

@@ -56,6 +56,10 @@ class HodlrMatrix {
   Eigen::MatrixXd diagonal_block(Eigen::Index first, Eigen::Index n) const;
   /// The largest magnitude on the diagonal.
   double diagonal_scale() const;
+  /// This matrix with each off-diagonal block recompressed to `relative_tolerance` of the
+  /// largest diagonal entry (an SVD of its factors' small core; no products): lower ranks,
+  /// for a factorization that refinement with this matrix corrects.
+  HodlrMatrix truncated(double relative_tolerance) const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
   Eigen::Index stored() const;
