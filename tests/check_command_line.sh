@@ -72,6 +72,20 @@ for dir in 2024 1e3 .; do
 done
 check; (cd "$work/cwd" && "$rccm" run "$b1" -q "${short[@]}" --restart 2024 >/dev/null 2>"$work/err"); rc=$?
 [ "$rc" -eq 2 ] && grep -q "2024/checkpoint.txt: the run reached time.T" "$work/err" || fail "--restart 2024 of a finished run: exit $rc, $(cat "$work/err")"
+# A config through a pipe is read once and runs as the file does (it was read twice: "missing
+# section 'mesh'"); beyond 16 MiB it is refused, nothing written (/dev/zero was read without end);
+# a sweep, which reads its config for every case, refuses a pipe.
+check; "$rccm" run "$b1" -q "${short[@]}" -o "$work/from-file" >/dev/null 2>"$work/err" || fail "b1 from its file: $(cat "$work/err")"
+check; cat "$b1" | "$rccm" run /dev/stdin -q "${short[@]}" -o "$work/from-pipe" >/dev/null 2>"$work/err" \
+  || fail "a config through a pipe: $(cat "$work/err")"
+cmp -s "$work/from-file/interface_t0.25.csv" "$work/from-pipe/interface_t0.25.csv" \
+  || fail "a config through a pipe: interface_t0.25.csv differs from the file's run"
+check; head -c 17000000 /dev/zero | "$rccm" run /dev/stdin -q -o "$work/never" 2>"$work/err" >/dev/null; rc=${PIPESTATUS[1]}
+[ "$rc" -eq 2 ] && grep -qF "/dev/stdin: more than 16 MiB, not a config" "$work/err" && [ ! -e "$work/never" ] \
+  || fail "17 MB through a pipe: exit $rc, $(cat "$work/err")"
+check; cat "$b1" | "$rccm" sweep /dev/stdin --set interface.alpha=1,2 -o "$work/never" 2>"$work/err" >/dev/null; rc=${PIPESTATUS[1]}
+[ "$rc" -eq 2 ] && grep -qF "sweep: /dev/stdin is a pipe" "$work/err" && [ ! -e "$work/never" ] \
+  || fail "a sweep through a pipe: exit $rc, $(cat "$work/err")"
 # A mesh.file that is a directory is bad input, named (not an internal error of the file read).
 mkdir -p "$work/meshdir/dir.msh"
 printf 'mesh = { file = "dir.msh"; };\n' > "$work/meshdir/m.cfg"

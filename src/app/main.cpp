@@ -48,6 +48,9 @@ int sweep(const std::string& config_file, const std::vector<std::string>& overri
   if (axes.empty())
     throw rccm::InputError("sweep: give at least one list, e.g. --set interface.alpha=0,0.01,0.1,1,10,100");
   const rccm::Config cfg = rccm::load_config(config_file, fixed);
+  if (!std::filesystem::is_regular_file(config_file))  // read once above, and drained
+    throw rccm::InputError("sweep: " + config_file + " is a pipe: a sweep reads its config for every case, and its "
+                           "jobs.txt runs it again; give a file");
   if (directory.empty()) directory = cfg.output.directory + "-sweep";
   std::vector<rccm::SweepCase> cases = rccm::make_sweep_cases(config_file, fixed, axes, directory);
   if (resume && !std::filesystem::is_directory(directory))

@@ -938,11 +938,11 @@ Config finish(libconfig::Config& cfg, const std::string& path, const std::vector
   }
 }
 
-/// What libconfig's "syntax error" at `line` of `file` most likely is, read from that line: a
-/// UTF-8 byte-order mark (an editor's "UTF-8 with BOM"), or a bare word where a value goes (nan,
-/// inf, a string without its quotes). Empty when the line shows neither.
-std::string line_hint(const std::string& file, int line) {
-  std::ifstream in(file, std::ios::binary);
+/// What libconfig's "syntax error" at `line` of a config's `text` most likely is, read from
+/// that line: a UTF-8 byte-order mark (an editor's "UTF-8 with BOM"), or a bare word where a
+/// value goes (nan, inf, a string without its quotes). Empty when the line shows neither.
+std::string line_hint(const std::string& config, int line) {
+  std::istringstream in(config);
   std::string text;
   for (int n = 0; n < line && std::getline(in, text);) ++n;
   if (line == 1 && text.rfind("\xEF\xBB\xBF", 0) == 0)
@@ -954,25 +954,45 @@ std::string line_hint(const std::string& file, int line) {
   return "";
 }
 
-InputError syntax_error(const libconfig::ParseException& e, const std::string& path) {
-  const std::string file = source_path(e.getFile(), path), hint = line_hint(file, e.getLine());
+/// The bytes of a config file or of a file it includes, read once: a regular file, or a pipe
+/// (`rccm run /dev/stdin`, `<(...)`, a FIFO), whose bytes a second read would not find. Anything
+/// else (a directory, a device: /dev/zero has no end), a file beyond max_config_bytes, and a NUL
+/// byte (libconfig would stop reading there) are refused.
+constexpr std::size_t max_config_bytes = 16 << 20;
+std::string config_bytes(const std::string& path) {
+  std::error_code ec;
+  const std::filesystem::file_status kind = std::filesystem::status(path, ec);
+  if (std::filesystem::is_directory(kind)) throw InputError(path + ": a directory, not a config file");
+  if (std::filesystem::exists(kind) && !std::filesystem::is_regular_file(kind) && !std::filesystem::is_fifo(kind))
+    throw InputError(path + ": neither a file nor a pipe (a device?): a config is a text file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot read the file (does it exist?)");
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > max_config_bytes)
+      throw InputError(path + ": more than 16 MiB, not a config (a config is text of a few kilobytes): the wrong file?");
+  }
+  const std::size_t nul = text.find('\0');
+  if (nul != std::string::npos)
+    throw InputError(path + ":" + std::to_string(1 + std::count(text.begin(), text.begin() + nul, '\n')) +
+                     ": a NUL byte: not a text file (a config is libconfig text)");
+  return text;
+}
+
+/// `config` is the text of `path`, the top config (an @include'd file is read anew).
+InputError syntax_error(const libconfig::ParseException& e, const std::string& path, const std::string& config) {
+  const std::string file = source_path(e.getFile(), path);
+  const std::string hint = line_hint(file == path ? config : config_bytes(file), e.getLine());
   return InputError(file + ":" + std::to_string(e.getLine()) + ": syntax error: " +
                     (hint.empty() ? syntax_hint(e.getError()) : hint));
 }
 
-}  // namespace
-
-namespace {
-
-/// Checks a config file and the files it includes before libconfig reads them: integer
-/// literals (check_integer_literals) and @include lines, which name a file relative to the
-/// directory of the top config (libconfig's include directory).
-void check_config_file(const std::string& path, const std::string& include_dir, int depth = 0) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path + ": a directory, not a config file");
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path + ": cannot read the file (does it exist?)");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+/// Checks the text of a config (`path`) and the files it includes before libconfig reads them:
+/// integer literals (check_integer_literals) and @include lines, which name a file relative to
+/// the directory of the top config (libconfig's include directory).
+void check_config_text(const std::string& text, const std::string& path, const std::string& include_dir, int depth = 0) {
   check_integer_literals(text, [&](int line) { return path + ":" + std::to_string(line); });
   std::istringstream lines(text);
   int n = 0;
@@ -989,7 +1009,19 @@ void check_config_file(const std::string& path, const std::string& include_dir, 
     if (!std::ifstream(included))
       throw InputError(path + ":" + std::to_string(n) + ": @include \"" + name + "\": cannot read " + included +
                        " (included files are found relative to the directory of " + "the config file)");
-    check_config_file(included, include_dir, depth + 1);
+    check_config_text(config_bytes(included), included, include_dir, depth + 1);
+  }
+}
+
+/// libconfig's tree of the text of a config (`name` in messages); @include'd files are found
+/// in `include_dir` (none: the working directory).
+void parse(libconfig::Config& cfg, const std::string& text, const std::string& name, const std::string& include_dir) {
+  cfg.setAutoConvert(true);
+  if (!include_dir.empty()) cfg.setIncludeDir(include_dir.c_str());
+  try {
+    cfg.readString(text);
+  } catch (const libconfig::ParseException& e) {
+    throw syntax_error(e, name, text);
   }
 }
 
@@ -998,29 +1030,17 @@ void check_config_file(const std::string& path, const std::string& include_dir, 
 Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
   const std::string dir = std::filesystem::path(path).parent_path().string();
   const std::string include_dir = dir.empty() ? "." : dir;
-  check_config_file(path, include_dir);
+  const std::string text = config_bytes(path);  // once: a pipe is not there to be read again
+  check_config_text(text, path, include_dir);
   libconfig::Config cfg;
-  cfg.setAutoConvert(true);
-  cfg.setIncludeDir(include_dir.c_str());
-  try {
-    cfg.readFile(path.c_str());
-  } catch (const libconfig::FileIOException&) {
-    throw InputError(path + ": cannot read the file (does it exist?)");
-  } catch (const libconfig::ParseException& e) {
-    throw syntax_error(e, path);
-  }
+  parse(cfg, text, path, include_dir);
   return finish(cfg, path, overrides);
 }
 
 Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
   check_integer_literals(text, [&](int line) { return name + ":" + std::to_string(line); });
   libconfig::Config cfg;
-  cfg.setAutoConvert(true);
-  try {
-    cfg.readString(text);
-  } catch (const libconfig::ParseException& e) {
-    throw syntax_error(e, name);
-  }
+  parse(cfg, text, name, "");
   return finish(cfg, name, overrides);
 }
 

@@ -9,8 +9,10 @@
 #include <catch2/catch.hpp>
 
 #include <algorithm>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <unistd.h>
 
 using namespace rccm;
 namespace fs = std::filesystem;
@@ -114,6 +116,47 @@ TEST_CASE("a config saved with a UTF-8 byte-order mark is refused with what to c
   std::ofstream(file, std::ios::binary) << good;  // the same text without it
   CHECK_NOTHROW(load_config(file.string()));
   fs::remove(file);
+}
+
+TEST_CASE("a config through a pipe is read once and reads as the file", "[config]") {
+  // `rccm run <(...)` or `cat cfg | rccm run /dev/stdin`: the path is a pipe's, /dev/fd/N, whose
+  // bytes a second read of the path does not find (it read an empty config: "missing section").
+  const auto through_pipe = [](const std::string& text, const std::vector<std::string>& overrides = {}) {
+    int ends[2];
+    REQUIRE(::pipe(ends) == 0);
+    REQUIRE(::write(ends[1], text.data(), text.size()) == static_cast<ssize_t>(text.size()));  // within its buffer
+    ::close(ends[1]);
+    struct Closed {
+      int fd;
+      ~Closed() { ::close(fd); }
+    } read_end{ends[0]};
+    return load_config("/dev/fd/" + std::to_string(ends[0]), overrides);
+  };
+  const Config piped = through_pipe(good), file = test::config_from_text(good);
+  CHECK(piped.settings == file.settings);
+  CHECK(piped.lines == file.lines);
+  CHECK_THROWS_WITH(through_pipe(good, {"interface.mu=-1"}), Catch::Contains("--set interface.mu: must be >= 0"));
+  CHECK_THROWS_WITH(through_pipe(std::string(good) + "solver = { tolerance = 2.0; };\n"),
+                    Catch::Matches("/dev/fd/[0-9]+:8: solver.tolerance: must be in \\(0, 1\\) \\(got 2\\)"));
+  // A syntax error's hint reads the line from the bytes read, not from the drained pipe.
+  CHECK_THROWS_WITH(through_pipe("\nmesh = { nx = nan; };\n"),
+                    Catch::Matches("/dev/fd/[0-9]+:2: syntax error: 'nan' is no value: .*"));
+}
+
+TEST_CASE("a config beyond 16 MiB, a device and a NUL byte are refused", "[config]") {
+  // /dev/zero was read without end (bad_alloc, exit 1); a NUL would end libconfig's read there.
+  const fs::path big = fs::temp_directory_path() / "rccm_test_big.cfg";
+  const std::size_t limit = 16 << 20;
+  std::ofstream(big, std::ios::binary) << good << "#" << std::string(limit - std::strlen(good) - 2, 'x') << "\n";
+  CHECK(fs::file_size(big) == limit);
+  CHECK_NOTHROW(load_config(big.string()));
+  std::ofstream(big, std::ios::app) << "\n";
+  CHECK_THROWS_WITH(load_config(big.string()), big.string() + ": more than 16 MiB, not a config (a config is text of a "
+                                                              "few kilobytes): the wrong file?");
+  std::ofstream(big, std::ios::binary) << good << std::string(1, '\0') << "\n";
+  CHECK_THROWS_WITH(load_config(big.string()), big.string() + ":8: a NUL byte: not a text file (a config is libconfig text)");
+  fs::remove(big);
+  CHECK_THROWS_WITH(load_config("/dev/zero"), "/dev/zero: neither a file nor a pipe (a device?): a config is a text file");
 }
 
 TEST_CASE("a missing file is named", "[config]") {
