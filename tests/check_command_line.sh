@@ -86,6 +86,12 @@ check; head -c 17000000 /dev/zero | "$rccm" run /dev/stdin -q -o "$work/never" 2
 check; cat "$b1" | "$rccm" sweep /dev/stdin --set interface.alpha=1,2 -o "$work/never" 2>"$work/err" >/dev/null; rc=${PIPESTATUS[1]}
 [ "$rc" -eq 2 ] && grep -qF "sweep: /dev/stdin is a pipe" "$work/err" && [ ! -e "$work/never" ] \
   || fail "a sweep through a pipe: exit $rc, $(cat "$work/err")"
+# A file value the read refuses is refused under the override too (an empty output.directory
+# ran under -o).
+sed 's|directory = "results/b1";|directory = "";|' "$b1" > "$work/empty-directory.cfg"
+check; "$rccm" run "$work/empty-directory.cfg" -q "${short[@]}" -o "$work/never" 2>"$work/err" >/dev/null; rc=$?
+[ "$rc" -eq 2 ] && grep -qF "empty-directory.cfg:32: output.directory: must not be empty; --set or -o replaces it" "$work/err" \
+  && [ ! -e "$work/never" ] || fail "an empty output.directory under -o: exit $rc, $(cat "$work/err")"
 # A mesh.file that is a directory is bad input, named (not an internal error of the file read).
 mkdir -p "$work/meshdir/dir.msh"
 printf 'mesh = { file = "dir.msh"; };\n' > "$work/meshdir/m.cfg"

@@ -894,50 +894,6 @@ void record_lines(const Setting& s, const std::string& path, std::map<std::strin
 
 namespace {
 
-/// 0 a number, 1 a string, 2 a boolean, -1 a group, an array or a list.
-int scalar_kind(const Setting& s) {
-  if (s.isNumber()) return 0;
-  if (s.getType() == Setting::TypeString) return 1;
-  return s.getType() == Setting::TypeBoolean ? 2 : -1;
-}
-
-/// A scalar the file gives and a --set (or -o) replaces, as the file wrote it.
-struct Replaced {
-  std::string path, where, type;  // where: "file:line"; type: type_name of the file's value
-  int kind;                       // scalar_kind of the file's value
-};
-
-/// Overrides, then the checked read, of a parsed libconfig tree.
-Config finish(libconfig::Config& cfg, const std::string& path, const std::vector<std::string>& overrides) {
-  std::vector<Replaced> replaced;
-  for (const std::string& o : overrides) {
-    const std::string setting = o.substr(0, o.find('='));
-    if (cfg.exists(setting)) {
-      const Setting& s = cfg.lookup(setting);
-      if (scalar_kind(s) >= 0 && s.getSourceLine() > 0)
-        replaced.push_back({setting, source_path(s.getSourceFile(), path) + ":" + std::to_string(s.getSourceLine()),
-                            type_name(s), scalar_kind(s)});
-    }
-    apply_override(cfg, o);
-  }
-  Reader reader(path);
-  try {
-    Config c = read(reader, cfg.getRoot(), path);
-    // The read took the override's kind of value: one of another kind in the file is wrong
-    // (`directory = 5;` under -o), and would stop the next run without the override.
-    for (const Replaced& r : replaced)
-      if (cfg.exists(r.path) && scalar_kind(cfg.lookup(r.path)) != r.kind)
-        throw InputError(r.where + ": " + r.path + ": must be " + type_name(cfg.lookup(r.path)) + " (got " + r.type +
-                         "); --set or -o replaces it in this run, but the file's value is wrong: mend it");
-    record_lines(cfg.getRoot(), "", c.lines);
-    c.settings = c.fingerprint();
-    c.settings_parts = c.fingerprint_parts();
-    return c;
-  } catch (const libconfig::SettingException& e) {
-    throw InputError(path + ": " + e.getPath() + ": " + e.what());
-  }
-}
-
 /// What libconfig's "syntax error" at `line` of a config's `text` most likely is, read from
 /// that line: a UTF-8 byte-order mark (an editor's "UTF-8 with BOM"), or a bare word where a
 /// value goes (nan, inf, a string without its quotes). Empty when the line shows neither.
@@ -1025,6 +981,50 @@ void parse(libconfig::Config& cfg, const std::string& text, const std::string& n
   }
 }
 
+/// The file's own values of the settings an override replaces (`replaced`: "file:line: path:"
+/// of each), read as the next run without the overrides would read them: a value it would
+/// refuse (`directory = 5;` or `directory = "";` under -o) is refused now, not left to stop it.
+void check_replaced_values(const std::string& text, const std::string& path, const std::string& include_dir,
+                           const std::vector<std::string>& replaced) {
+  libconfig::Config file;
+  parse(file, text, path, include_dir);
+  try {
+    read(Reader(path), file.getRoot(), path);
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    for (const std::string& r : replaced)
+      if (what.rfind(r, 0) == 0)
+        throw InputError(what + "; --set or -o replaces it in this run, but the file's value is wrong: mend it");
+  }
+}
+
+/// The checked read of the text of a config under `overrides`.
+Config read_config(const std::string& text, const std::string& path, const std::string& include_dir,
+                   const std::vector<std::string>& overrides) {
+  libconfig::Config cfg;
+  parse(cfg, text, path, include_dir);
+  std::vector<std::string> replaced;
+  for (const std::string& o : overrides) {
+    const std::string setting = o.substr(0, o.find('='));
+    if (cfg.exists(setting) && cfg.lookup(setting).getSourceLine() > 0) {
+      const Setting& s = cfg.lookup(setting);
+      replaced.push_back(source_path(s.getSourceFile(), path) + ":" + std::to_string(s.getSourceLine()) + ": " + setting + ":");
+    }
+    apply_override(cfg, o);
+  }
+  Reader reader(path);
+  try {
+    Config c = read(reader, cfg.getRoot(), path);
+    if (!replaced.empty()) check_replaced_values(text, path, include_dir, replaced);
+    record_lines(cfg.getRoot(), "", c.lines);
+    c.settings = c.fingerprint();
+    c.settings_parts = c.fingerprint_parts();
+    return c;
+  } catch (const libconfig::SettingException& e) {
+    throw InputError(path + ": " + e.getPath() + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 Config load_config(const std::string& path, const std::vector<std::string>& overrides) {
@@ -1032,16 +1032,12 @@ Config load_config(const std::string& path, const std::vector<std::string>& over
   const std::string include_dir = dir.empty() ? "." : dir;
   const std::string text = config_bytes(path);  // once: a pipe is not there to be read again
   check_config_text(text, path, include_dir);
-  libconfig::Config cfg;
-  parse(cfg, text, path, include_dir);
-  return finish(cfg, path, overrides);
+  return read_config(text, path, include_dir, overrides);
 }
 
 Config parse_config(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
   check_integer_literals(text, [&](int line) { return name + ":" + std::to_string(line); });
-  libconfig::Config cfg;
-  parse(cfg, text, name, "");
-  return finish(cfg, name, overrides);
+  return read_config(text, name, "", overrides);
 }
 
 std::string string_override(const std::string& path, const std::string& text) {

@@ -12,6 +12,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <unistd.h>
 
 using namespace rccm;
@@ -93,6 +94,25 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
                     Catch::Contains(":8: output.directory: must be a string (got an integer); --set or -o replaces it"));
   CHECK_THROWS_WITH(test::config_from_text(good, {"solver.form=5"}),
                     Catch::Contains("--set solver.form: must be a string (got an integer)"));  // no such setting in the file
+  // A value of the right kind that the file's read refuses, under an override: the same (the
+  // empty directory ran under -o though refused without it).
+  const std::string empty_directory = std::string(good) + "output = { directory = \"\"; };\n";
+  CHECK_THROWS_WITH(test::config_from_text(empty_directory, {"output.directory=\"results\""}),
+                    Catch::EndsWith(":8: output.directory: must not be empty; --set or -o replaces it in this run, but "
+                                    "the file's value is wrong: mend it"));
+  CHECK_THROWS_WITH(test::config_from_text(good, {"mesh.nx=0"}), Catch::Contains("--set mesh.nx: must be >= 1"));
+  const std::string zero_cells = std::regex_replace(std::string(good), std::regex("nx = 4"), "nx = 0");
+  CHECK_THROWS_WITH(test::config_from_text(zero_cells, {"mesh.nx=4"}),
+                    Catch::EndsWith(":2: mesh.nx: must be >= 1 (got 0); --set or -o replaces it in this run, but the "
+                                    "file's value is wrong: mend it"));
+  // The file's values are read together, as the next run would: its output.times beyond the
+  // shorter time.T given beside it is no fault of the file.
+  const std::string late_times = std::string(good) + "output = { times = [0.75]; };\n";
+  CHECK(test::config_from_text(late_times, {"time.T=0.5", "output.times=[0.25]"}).time.T == 0.5);
+  // A refusal of the file alone at a setting no override replaces is for its own run to say:
+  // output.times beyond the file's time.T, under a longer time.T.
+  const std::string times_past_T = std::string(good) + "output = { times = [2.0]; };\n";
+  CHECK(test::config_from_text(times_past_T, {"time.T=3"}).output.times.at(0) == 2.0);
   // A --set the user typed is named so; -o, --restart and a sweep's case directory by their origin.
   Config dir_cfg = test::config_from_text(good, {"output.directory=\"/tmp/x\""});
   CHECK(dir_cfg.where("output.directory") == "--set output.directory");
