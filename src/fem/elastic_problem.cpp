@@ -56,8 +56,9 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
     m.precision(3);
     if (spread > 1e12)
       m << "the structure's stiffness is ill-conditioned (" << solver_->name() << ": rcond " << solver_->rcond()
-        << "): its diagonal spans a factor " << spread << "; bring the stiffnesses closer (the interface's "
-        << "a Cn and a Ct against the body's E, or the materials among themselves)";
+        << "): its diagonal spans a factor " << spread << "; bring the stiffnesses closer: the interface's "
+        << "a Cn and a Ct (interface.Cn and Ct times each contact node's length or area a, which the mesh's "
+        << "size sets) against the body's material.E, or the materials among themselves";
     else
       m << "the structure is not restrained: its stiffness with the interface springs is singular (" << solver_->name()
         << ": rcond " << solver_->rcond()

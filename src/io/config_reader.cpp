@@ -426,6 +426,18 @@ void read_rotation(const Reader& r, const Setting& m, MeshParams& p) {
   p.rotation = r.number(g, "angle");
 }
 
+/// A length, a modulus, an interface stiffness or a duration (mm, MPa, MPa/mm, s) below this is
+/// no physical magnitude in the config's units (a picometre, a millipascal, a nanosecond of a
+/// quasi-static process), and the others' round-off swallows it. Refused here, naming the
+/// setting: a mesh of 1e-300 mm was refused as an interface.boundary off the boundary, a
+/// modulus of 1e-300 MPa as an ill-conditioned stiffness at loads, a time.T of 1e-300 s as
+/// output.times beyond it.
+constexpr double min_magnitude = 1e-9;
+void check_magnitude(const Reader& r, const Setting& s, double value, const char* unit) {
+  r.check(value >= min_magnitude, s, std::string("must be at least 1e-9 ") + unit +
+                                         " (the units are mm, N, MPa, s: a smaller value is no physical one)", value);
+}
+
 MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& config_dir) {
   const Setting& m = r.group(root, "mesh");
   MeshParams p;
@@ -461,7 +473,10 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
     const std::array<double, 3> size = r.coordinates(m, "size", box ? 3 : 2);
     p.size = {size[0], size[1]};
     p.depth = size[2];
-    for (int k = 0; k < (box ? 3 : 2); ++k) r.check(size[k] > 0, m["size"], "lengths must be > 0", size[k]);
+    for (int k = 0; k < (box ? 3 : 2); ++k) {
+      r.check(size[k] > 0, m["size"], "lengths must be > 0", size[k]);
+      check_magnitude(r, m["size"], size[k], "mm");
+    }
     p.nx = r.integer(m, "nx", 0, true);
     p.ny = r.integer(m, "ny", 0, true);
     r.check(p.nx >= 1, m["nx"], "must be >= 1", p.nx);
@@ -501,6 +516,7 @@ MeshParams read_mesh(const Reader& r, const Setting& root, const std::string& co
 constexpr double max_modulus = 1e15;
 void check_modulus(const Reader& r, const Setting& s, double value, const char* unit) {
   r.check(value <= max_modulus, s, std::string("must be at most 1e15 ") + unit + " (beyond, the stiffness overflows)", value);
+  check_magnitude(r, s, value, unit);
 }
 
 MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
@@ -664,6 +680,7 @@ TimeParams read_time(const Reader& r, const Setting& root) {
   p.T = r.number(t, "T");
   r.check(p.T > 0, t["T"], "must be > 0", p.T);
   r.check(p.T <= 1e15, t["T"], "must be at most 1e15 s (the steps of a longer run are below round-off)", p.T);
+  check_magnitude(r, t["T"], p.T, "s");
   p.steps = r.integer(t, "steps", p.steps);
   if (t.exists("steps")) r.check(p.steps >= 1, t["steps"], "must be >= 1", p.steps);
   // Each fixed step keeps its time and a record of its work (64 bytes).

@@ -179,6 +179,28 @@ TEST_CASE("a config beyond 16 MiB, a device and a NUL byte are refused", "[confi
   CHECK_THROWS_WITH(load_config("/dev/zero"), "/dev/zero: neither a file nor a pipe (a device?): a config is a text file");
 }
 
+TEST_CASE("a length modulus or time below any physical magnitude is refused naming its setting", "[config]") {
+  // Each was refused as another setting's fault: interface.boundary off the mesh's boundary,
+  // an ill-conditioned stiffness at loads, output.times beyond time.T.
+  const std::string b1 = test::shipped("b1.cfg");
+  const std::string rule = " (the units are mm, N, MPa, s: a smaller value is no physical one)";
+  CHECK_THROWS_WITH(load_config(b1, {"mesh.size=[1e-300,1e-300]"}), "--set mesh.size: must be at least 1e-9 mm" + rule + " (got 1e-300)");
+  CHECK_THROWS_WITH(load_config(b1, {"material.E=1e-300"}), "--set material.E: must be at least 1e-9 MPa" + rule + " (got 1e-300)");
+  CHECK_THROWS_WITH(load_config(b1, {"interface.Cn=1e-10"}), "--set interface.Cn: must be at least 1e-9 MPa/mm" + rule + " (got 1e-10)");
+  CHECK_THROWS_WITH(load_config(b1, {"time.T=1e-300"}), "--set time.T: must be at least 1e-9 s" + rule + " (got 1e-300)");
+  // Small but physical: a micrometre film, a 1 kPa gel, a microsecond; and the least itself.
+  const Config small = load_config(b1, {"mesh.size=[1e-3,1e-9]", "material.E=1e-3", "interface.Cn=1e-9", "interface.Ct=1e-9",
+                                         "time.T=1e-6", "output.times=[1e-6]"});
+  CHECK(small.mesh.size[1] == 1e-9);
+  CHECK(small.bodies.at(0).material.E == 1e-3);
+  CHECK(small.time.T == 1e-6);
+  // A stiffness ratio beyond double precision names the settings that make it.
+  CHECK_THROWS_WITH(test::make_model(load_config(b1, {"material.E=1e-9"})),
+                    Catch::Contains(": loads: the structure's stiffness is ill-conditioned") &&
+                        Catch::Contains("(interface.Cn and Ct times each contact node's length or area a, which the "
+                                        "mesh's size sets) against the body's material.E"));
+}
+
 TEST_CASE("a missing file is named", "[config]") {
   CHECK_THROWS_WITH(load_config("/nonexistent/b1.cfg"), Catch::Contains("/nonexistent/b1.cfg: cannot read"));
 }
