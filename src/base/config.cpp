@@ -221,7 +221,7 @@ std::vector<std::string> unused_settings(const Config& cfg) {
   const bool limit = alpha_zero_everywhere(cfg);
   const std::string integrator = std::string("the \"") + method_name(m) + "\" integrator" +
                                  (m == Method::RateIndependent && limit ? " (alpha = 0 on every interface)" : "");
-  const std::string cholmod = "solver.linear = \"cholmod\"";
+  const std::string cholmod = "CHOLMOD (solver.linear = \"cholmod\", or \"auto\" in one process)";
   const std::string active_set = solver + (bipotential ? " without its exact step (solver.active_set = false)" : "");
   struct Use {
     const char* path;

@@ -8,6 +8,7 @@
 #include "rccm/io/csv.hpp"
 #include "rccm/io/result_writer.hpp"
 #include "rccm/la/parallel.hpp"
+#include "rccm/la/spd_solver.hpp"
 #include "rccm/fem/gmsh_mesh.hpp"
 #include "rccm/fem/rectangle_mesh.hpp"
 #include "rccm/time/arkode_integrator.hpp"
@@ -757,7 +758,9 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   S.compressed_min_nodes = r.integer(*s, "compressed_min_nodes", S.compressed_min_nodes);
   if (s->exists("compressed_min_nodes"))
     r.check(S.compressed_min_nodes >= 0, (*s)["compressed_min_nodes"], "must be >= 0", S.compressed_min_nodes);
-  S.linear.kind = static_cast<LinearSolver>(r.choice(*s, "linear", {"auto", "cholmod", "mumps", "cg-gamg"}, 0));
+  // "auto" read as the solver it stands for in this run: who reads solver.linear_tolerance
+  // (unused_settings) follows the solver that runs, not the word.
+  S.linear.kind = chosen_linear_solver(static_cast<LinearSolver>(r.choice(*s, "linear", {"auto", "cholmod", "mumps", "cg-gamg"}, 0)));
   if (S.linear.kind == LinearSolver::Cholmod && parallel::size() > 1)
     r.fail((*s)["linear"], "\"cholmod\" solves in one process; under mpirun (" + std::to_string(parallel::size()) +
                               " processes) use \"mumps\" or \"cg-gamg\", or \"auto\"");

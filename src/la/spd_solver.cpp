@@ -6,10 +6,14 @@
 
 namespace rccm {
 
+LinearSolver chosen_linear_solver(LinearSolver kind) {
+  if (kind == LinearSolver::Auto) kind = parallel::size() > 1 ? LinearSolver::Mumps : LinearSolver::Cholmod;
+  return kind;
+}
+
 std::unique_ptr<SpdSolver> make_spd_solver(const SparseMatrix& A, const LinearSolverParams& params,
                                            const std::vector<int>& last) {
-  LinearSolver kind = params.kind;
-  if (kind == LinearSolver::Auto) kind = parallel::size() > 1 ? LinearSolver::Mumps : LinearSolver::Cholmod;
+  const LinearSolver kind = chosen_linear_solver(params.kind);
   if (kind == LinearSolver::Cholmod) return std::make_unique<CholmodFactor>(A, last);
   return std::make_unique<PetscSolver>(A, kind, params.tolerance);
 }

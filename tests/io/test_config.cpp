@@ -248,7 +248,8 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
       {"solver.active_set=false", {{}}, {{"solver.method=\"newton\""}}},
       {"solver.active_set_max_nodes=2", {{}}, {{"solver.method=\"rccm\""}, {"solver.active_set=false"}}},
       {"solver.compressed_min_nodes=2", {{}, {"solver.method=\"newton\""}}, {{"solver.method=\"rccm\""}}},
-      {"solver.linear_tolerance=1e-8", {{"solver.linear=\"cg-gamg\""}, {"solver.linear=\"mumps\""}}, {{"solver.linear=\"cholmod\""}}},
+      {"solver.linear_tolerance=1e-8", {{"solver.linear=\"cg-gamg\""}, {"solver.linear=\"mumps\""}},
+       {{"solver.linear=\"cholmod\""}, {}, {"solver.linear=\"auto\""}}},  // auto: CHOLMOD in one process
       {"integrator.scheme=\"erk\"", {{}}, {{"integrator.method=\"euler\""}}},
       {"integrator.table=\"ARKODE_SDIRK_5_3_4\"", {{}}, {{"integrator.method=\"euler\""}}},
       {"integrator.rtol=1e-7", {{}}, {{"integrator.method=\"euler\""}, {"interface.alpha=0"}}},
@@ -289,6 +290,12 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
              Catch::Contains("the \"rate-independent\" integrator (alpha = 0 on every interface), only by \"arkode\""));
   CHECK_THAT(unused_settings(test::config_from_text(good, {"integrator.rtol=1e-7", "integrator.method=\"rate-independent\""})).at(0),
              !Catch::Contains("alpha = 0"));
+  // "auto" in one process is CHOLMOD, and said so as "cholmod" is (it went without a note).
+  for (const char* linear : {"\"auto\"", "\"cholmod\""})
+    CHECK(unused_settings(test::config_from_text(good, {std::string("solver.linear=") + linear, "solver.linear_tolerance=1e-8"})) ==
+          std::vector<std::string>{"--set solver.linear_tolerance: not read by CHOLMOD (solver.linear = \"cholmod\", or "
+                                   "\"auto\" in one process), only by solver.linear = \"cg-gamg\" and \"mumps\" (\"auto\" "
+                                   "under mpirun); it has no effect on this run"});
   // The 3D Newton step keeps W0 dense.
   const std::vector<std::string> peel = unused_settings(test::corner_peel(2, {"solver.method=\"newton\"", "solver.compressed_min_nodes=100"}));
   CHECK(std::count_if(peel.begin(), peel.end(), [](const std::string& n) { return n.find("compressed_min_nodes") != n.npos; }) == 1);

@@ -122,7 +122,9 @@ enum class SweepForm { GaussSeidel, Jacobi };
 enum class RhoRule { Eigen, Paper };
 /// The sparse solver of the body's stiffness K0 (la/spd_solver.hpp): CHOLMOD (embedded, one
 /// process), PETSc with MUMPS (direct, distributed), PETSc CG with GAMG (iterative);
-/// auto: CHOLMOD in one process, MUMPS under mpirun with several.
+/// auto: CHOLMOD in one process, MUMPS under mpirun with several (la/spd_solver.hpp,
+/// chosen_linear_solver; the config reader reads a solver section's "auto" as the one it
+/// stands for in the run).
 enum class LinearSolver { Auto, Cholmod, Mumps, CgGamg };
 
 struct LinearSolverParams {

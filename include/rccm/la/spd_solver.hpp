@@ -28,8 +28,12 @@ class SpdSolver {
   virtual std::string name() const = 0;
 };
 
-/// The solver of `params.kind` for A (symmetric, both triangles stored); Auto: CHOLMOD in one
-/// process, MUMPS in several. `last`: indices ordered last (CHOLMOD only: CholmodFactor).
+/// The solver `kind` stands for: Auto is CHOLMOD in one process, MUMPS in several (under
+/// mpirun); any other kind is itself.
+LinearSolver chosen_linear_solver(LinearSolver kind);
+
+/// The solver of `params.kind` (chosen_linear_solver) for A (symmetric, both triangles stored).
+/// `last`: indices ordered last (CHOLMOD only: CholmodFactor).
 std::unique_ptr<SpdSolver> make_spd_solver(const SparseMatrix& A, const LinearSolverParams& params,
                                            const std::vector<int>& last = {});
 
