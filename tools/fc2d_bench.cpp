@@ -6,7 +6,8 @@
 // Per problem and solver: iterations, Siconos' error measure (fc2d_compute_error) of the
 // solution, time per solve, and Siconos' time over each solver's: Siconos is asked for the
 // error our default (bipotential Gauss-Seidel) solve reached, or 1e-10 (our tolerance) where
-// it went below that (Siconos cannot always reach round-off; README "Performance").
+// it went below that (Siconos cannot always reach round-off; docs/PERFORMANCE.md "The three contact
+// solvers against Siconos").
 // --copies K poses each later sparse file K times over, as K independent problems in one
 // (W block-diagonal): a size test of the sparse path (the solution is K copies of one).
 #include "rccm/contact/contact_solver.hpp"
@@ -174,11 +175,26 @@ PlainContactProblem copies(const PlainContactProblem& p, int K) {
 
 }  // namespace
 
+const char* const usage =
+    "usage: fc2d-bench [--benchmarks CONFIG_DIR] [--copies K] [FILE.dat...]\n"
+    "Our contact solvers (bipotential Gauss-Seidel and Jacobi, rccm, newton) against Siconos' NSGS, one row\n"
+    "per problem and solver: iterations, Siconos' error, ms per solve, Siconos' time over ours.\n"
+    "  FILE.dat            a Siconos fc2d problem (Siconos' numerics/src/FrictionContact/test/data/)\n"
+    "  --benchmarks DIR    B1's and B2's condensed problems at every 40th step of Euler-210, and in 3D the\n"
+    "                      corner peel's against fc3d NSGS (DIR/b1.cfg, b2.cfg, corner-peel.cfg)\n"
+    "  --copies K          each later sparse file posed K times over in one problem (a size test)\n"
+    "  --help, -h          this text\n";
+
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: fc2d-bench [--benchmarks CONFIG_DIR] [--copies K] [FILE.dat...]\n";
+    std::cerr << usage;
     return 2;
   }
+  for (int a = 1; a < argc; ++a)
+    if (std::strcmp(argv[a], "--help") == 0 || std::strcmp(argv[a], "-h") == 0) {
+      std::cout << usage;
+      return 0;
+    }
   std::setvbuf(stdout, nullptr, _IOLBF, 0);  // a line per solver, even when interrupted
   std::printf("%-42s %8s  %-19s %10s %12s %12s %10s\n", "problem", "contacts", "solver", "iterations", "error",
               "ms/solve", "siconos/it");

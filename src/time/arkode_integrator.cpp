@@ -74,7 +74,7 @@ struct ArkodeIntegrator::Impl {
     // ARKODE gave up (alpha = 0.01); BetaOde::accept clamps beta to [0, committed] instead.
     // DIRK: the 4th-order ESDIRK of ARK4(3)6L (explicit first stage, stiffly accurate,
     // L-stable) by default; on B1 it needs 4x fewer contact solves than ARKODE's default
-    // SDIRK_5_3_4 for the same error in beta (README "Performance").
+    // SDIRK_5_3_4 for the same error in beta (docs/PERFORMANCE.md "The contact step and the integrator").
     const std::string table = !p.table.empty() ? p.table : implicit ? IntegratorParams::default_dirk_table : "";
     if (!table.empty())
       check(ARKStepSetTableName(mem, implicit ? table.c_str() : "ARKODE_DIRK_NONE",

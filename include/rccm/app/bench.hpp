@@ -1,6 +1,6 @@
 // `rccm bench`: the benchmark harness. B1 and B2 with each integrator and both sweep forms,
 // timed against the paper's totals (Tables 1-2), and the refined B1 family for scaling
-// (docs in README.md, "Performance").
+// (docs/PERFORMANCE.md, "The contact step and the integrator" and "Scale").
 #pragma once
 
 #include "rccm/base/config.hpp"
