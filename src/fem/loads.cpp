@@ -116,6 +116,12 @@ std::vector<LoadCase> make_load_cases(const Mesh& mesh, const Config& cfg, const
   return out;
 }
 
+Eigen::VectorXd LoadCase::direction(Eigen::Index ndof) const {
+  Eigen::VectorXd v = Eigen::VectorXd::Zero(ndof);
+  for (std::size_t j = 0; j < dofs.size(); ++j) v[dofs[j]] += along[j];
+  return v;
+}
+
 std::vector<int> prescribed_dofs(const std::vector<LoadCase>& loads) {
   std::vector<int> dofs;
   for (const LoadCase& lc : loads) dofs.insert(dofs.end(), lc.prescribed.begin(), lc.prescribed.end());

@@ -23,8 +23,7 @@ BodyForms::BodyForms(const Condensation& condensation, const SparseMatrix& K, co
       if (free[d]) L(d, first) = lc.force[d];  // phi_k = f_k . u (free DOFs)
     L.col(first + 1) = K * lc.displacement;       // rho_k = ud_k . (K u - P^T r)
     R.col(first + 1) = lc.displacement;
-    Eigen::VectorXd along = Eigen::VectorXd::Zero(ndof);
-    for (std::size_t j = 0; j < lc.dofs.size(); ++j) along[lc.dofs[j]] += lc.along[j];
+    const Eigen::VectorXd along = lc.direction(ndof);
     if (lc.reaction) {  // the supports' reaction along it: along . (K u - P^T r)
       L.col(first + 2) = K * along;
       R.col(first + 2) = along;

@@ -29,8 +29,7 @@ BodyState body_state(const Model& model, const InterfaceState& s) {
   const Eigen::VectorXd Ku = model.stiffness() * b.u;
   b.f_ext = Ku - model.interface().P.transpose() * b.r;  // K u = f + P^T r (docs/MODEL.md s1)
   b.strain_energy = 0.5 * b.u.dot(Ku);
-  std::vector<char> free(b.u.size(), 1);
-  for (int d : model.supports()) free[d] = 0;
+  const std::vector<char>& free = model.free_dofs();
   const Eigen::Index n = Eigen::Index(model.loads().size());
   b.work = {model.condensation().amplitudes(s.t), Eigen::VectorXd(n), Eigen::VectorXd(n)};
   for (Eigen::Index k = 0; k < n; ++k) {
@@ -38,10 +37,9 @@ BodyState body_state(const Model& model, const InterfaceState& s) {
     // A prescribed displacement's force is the support's reaction (also where an earlier load
     // holds its DOFs alike); an applied load's is what it applies (a share on a supported DOF included).
     const Eigen::VectorXd& f = lc.reaction ? b.f_ext : Eigen::VectorXd(lc.amplitude(s.t) * lc.force);
-    double F = 0, u = 0;
-    for (std::size_t j = 0; j < lc.dofs.size(); ++j) F += lc.along[j] * f[lc.dofs[j]], u += lc.along[j] * b.u[lc.dofs[j]];
-    b.force.push_back(F);
-    b.displacement.push_back(u / double(lc.nodes));
+    const Eigen::VectorXd along = lc.direction(b.u.size());
+    b.force.push_back(along.dot(f));
+    b.displacement.push_back(along.dot(b.u) / double(lc.nodes));
     b.work.phi[k] = 0;
     for (Eigen::Index d = 0; d < b.u.size(); ++d)
       if (free[d]) b.work.phi[k] += lc.force[d] * b.u[d];

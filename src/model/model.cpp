@@ -172,6 +172,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   loads_ = make_load_cases(mesh_, cfg, axis);
   supports_ = prescribed_dofs(loads_);
   supports_.insert(supports_.end(), axis.begin(), axis.end());
+  free_.assign(mesh_.num_dofs(), 1);
+  for (int d : supports_) free_[d] = 0;
   if (supports_.size() == static_cast<std::size_t>(mesh_.num_dofs()))
     throw InputError(cfg.where("loads") + ": every degree of freedom is prescribed: nothing is left to solve");
   check_prescribed_gaps(cfg);
@@ -217,9 +219,7 @@ void Model::condense(const Eigen::VectorXd& beta) {
   body_.reset();
   body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
   condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress_W0_);
-  std::vector<char> free(K_.rows(), 1);
-  for (int d : supports_) free[d] = 0;
-  forms_ = std::make_unique<BodyForms>(*condensation_, K_, interface_, loads_, free, mesh_, probes_);
+  forms_ = std::make_unique<BodyForms>(*condensation_, K_, interface_, loads_, free_, mesh_, probes_);
   Dref_ = D1_;
   const Layout& L = interface_.layout;
   for (int i = 0; i < interface_.size(); ++i) L.local(Dref_, i) *= w[i];

@@ -23,6 +23,9 @@ struct LoadCase {
   std::vector<double> along;
   int nodes = 0;
   bool reaction = false;  // a prescribed displacement: its force is the supports' reaction on its DOFs
+
+  /// sum_k along_k e_{dofs_k} on `ndof` DOFs: its resultant is direction . f, its displacement direction . u / nodes.
+  Eigen::VectorXd direction(Eigen::Index ndof) const;
 };
 
 /// Turns the config's loads into load cases; throws InputError "file:line: loads.[k]..."

@@ -77,6 +77,8 @@ class Model {
   const std::vector<LoadCase>& loads() const { return loads_; }
   /// The DOFs held: prescribed by the loads, and u_r on the axis of an axisymmetric mesh.
   const std::vector<int>& supports() const { return supports_; }
+  /// Whether each DOF is free: not among supports().
+  const std::vector<char>& free_dofs() const { return free_; }
 
  private:
   /// Throws InputError when no contact state can hold the body (a frictionless, unbonded interface).
@@ -93,6 +95,7 @@ class Model {
   std::vector<std::string> notes_;
   std::vector<LoadCase> loads_;
   std::vector<int> supports_;
+  std::vector<char> free_;
   SparseMatrix K_;
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
