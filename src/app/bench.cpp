@@ -31,7 +31,7 @@ double peak_memory_mb() {
 }
 
 struct Figures {
-  double setup, solves, sweeps_mean, us_per_solve, ms_per_step, wall;
+  double setup, solves, sweeps_mean, us_per_solve, us_per_body_solve, ms_per_step, wall;
 };
 
 Figures figures(const RunResult& r) {
@@ -40,6 +40,7 @@ Figures figures(const RunResult& r) {
           double(r.solves.contact_solves),
           double(r.solves.sweeps) / n,
           1e6 * r.solves.seconds / n,
+          1e6 * r.body_solve_seconds / std::max(1L, r.body_solves),
           1e3 * (r.wall_seconds - r.setup_seconds) / std::max(1L, r.integrator.steps),
           r.wall_seconds};
 }
@@ -115,8 +116,8 @@ BenchRow run_bench_case(const BenchCase& c) {
 
 void print_bench_header(std::ostream& out) {
   char line[512];
-  std::snprintf(line, sizeof line, "%-20s %9s %8s %6s %9s %11s %10s %9s %9s %9s %8s %8s\n", "case", "unknowns",
-                "contact", "steps", "solves", "sweeps/sol", "us/solve", "ms/step", "setup s", "wall s",
+  std::snprintf(line, sizeof line, "%-20s %9s %8s %6s %9s %11s %10s %10s %9s %9s %9s %8s %8s\n", "case", "unknowns",
+                "contact", "steps", "solves", "sweeps/sol", "us/solve", "us/body", "ms/step", "setup s", "wall s",
                 "peak MB", "paper/x");
   out << line;
 }
@@ -125,10 +126,10 @@ void print_bench_row(std::ostream& out, const BenchRow& row) {
   const RunResult& r = row.result;
   const Figures f = figures(r);
   char line[512];
-  std::snprintf(line, sizeof line, "%-20s %9d %8d %6ld %9ld %6.2f/%-4d %10.1f %9.3f %9.4f %9.3f %8.1f %8s\n",
+  std::snprintf(line, sizeof line, "%-20s %9d %8d %6ld %9ld %6.2f/%-4d %10.1f %10.1f %9.3f %9.4f %9.3f %8.1f %8s\n",
                 row.bench.name.c_str(), r.dofs, r.contact_nodes, r.integrator.steps, r.solves.contact_solves,
-                f.sweeps_mean, r.solves.max_sweeps, f.us_per_solve, f.ms_per_step, f.setup, f.wall, row.peak_rss_mb,
-                speedup(row).c_str());
+                f.sweeps_mean, r.solves.max_sweeps, f.us_per_solve, f.us_per_body_solve, f.ms_per_step, f.setup, f.wall,
+                row.peak_rss_mb, speedup(row).c_str());
   out << line << std::flush;
 }
 
@@ -148,14 +149,18 @@ void print_growth(std::ostream& out, const std::vector<BenchRow>& rows) {
   const auto contact_nodes = [](const RunResult& r) { return r.contact_nodes; };
   const auto setup = [](const BenchRow& r) { return figures(r.result).setup; };
   const auto per_solve = [](const BenchRow& r) { return figures(r.result).us_per_solve; };
+  const auto per_body_solve = [](const BenchRow& r) { return figures(r.result).us_per_body_solve; };
   const auto per_step = [](const BenchRow& r) { return figures(r.result).ms_per_step; };
   const auto memory = [](const BenchRow& r) { return r.peak_rss_mb; };
   char line[512];
   std::snprintf(line, sizeof line,
-                "growth exponents against unknowns: setup %.2f, per contact solve %.2f, per step %.2f, memory %.2f\n"
-                "growth exponents against contact nodes: setup %.2f, per contact solve %.2f, per step %.2f, memory %.2f\n",
-                slope(unknowns, setup), slope(unknowns, per_solve), slope(unknowns, per_step), slope(unknowns, memory),
-                slope(contact_nodes, setup), slope(contact_nodes, per_solve), slope(contact_nodes, per_step),
+                "growth exponents against unknowns: setup %.2f, per contact solve %.2f, per body solve %.2f, per step "
+                "%.2f, memory %.2f\n"
+                "growth exponents against contact nodes: setup %.2f, per contact solve %.2f, per body solve %.2f, per "
+                "step %.2f, memory %.2f\n",
+                slope(unknowns, setup), slope(unknowns, per_solve), slope(unknowns, per_body_solve),
+                slope(unknowns, per_step), slope(unknowns, memory), slope(contact_nodes, setup),
+                slope(contact_nodes, per_solve), slope(contact_nodes, per_body_solve), slope(contact_nodes, per_step),
                 slope(contact_nodes, memory));
   out << line;
 }
@@ -174,6 +179,7 @@ std::vector<std::pair<std::string, double>> named_figures(const BenchRow& row) {
           {"sweeps_mean", f.sweeps_mean},
           {"sweeps_max", r.solves.max_sweeps},
           {"us_per_solve", f.us_per_solve},
+          {"us_per_body_solve", f.us_per_body_solve},
           {"ms_per_step", f.ms_per_step},
           {"setup_s", f.setup},
           {"wall_s", f.wall},

@@ -6,6 +6,7 @@
 #include "rccm/io/output_directory.hpp"
 #include "rccm/io/run_report.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -140,7 +141,11 @@ void Recorder::attach(BetaIntegrator& integrator) {
 }
 
 const BodyState& Recorder::fields() {
-  if (body_.u.size() == 0) body_ = body_state(*model_, ode_->committed());
+  if (body_.u.size() != 0) return body_;
+  const auto start = std::chrono::steady_clock::now();
+  body_ = body_state(*model_, ode_->committed());
+  ++result_.body_solves;
+  result_.body_solve_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return body_;
 }
 

@@ -159,6 +159,18 @@ TEST_CASE("ParaView frames at t = 0, at the output times and every output.every 
   fs::remove_all(dir);
 }
 
+TEST_CASE("a frame at every step solves the body once per accepted state: the bench's body-solve timing counts them",
+          "[output]") {
+  // The full displacement is solved once per accepted state that needs it (step 0, each frame)
+  // and reused by the strain check and the output times at the same state.
+  const fs::path dir = fs::temp_directory_path() / "rccm_test_output_body_solves";
+  const RunResult r = run_into(dir, test::shipped("b1.cfg"), {"integrator.method=euler", "output.every=1"});
+  CHECK(r.body_solves == r.integrator.steps + 1);
+  CHECK(r.body_solve_seconds > 0);
+  CHECK(r.body_solve_seconds < r.wall_seconds);
+  fs::remove_all(dir);
+}
+
 TEST_CASE("the rate-independent limit names the energy its snap-through releases with the steps' error", "[output]") {
   const fs::path dir = fs::temp_directory_path() / "rccm_test_output_released";
   run_into(dir, test::shipped("b1.cfg"), {"interface.alpha=0"});

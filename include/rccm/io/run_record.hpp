@@ -54,6 +54,8 @@ struct RunResult {
   std::vector<std::string> bodies;       // the mesh's bodies
   std::vector<int> pairs_per_interface;  // contact pairs of each config interface
   double setup_seconds = 0, wall_seconds = 0;  // of this process: a restart's since it restarted
+  long body_solves = 0;                         // full displacements solved (frames, output times, strain checks)
+  double body_solve_seconds = 0;                // their wall time: the body's solve phase, one right-hand side
   double restarted_at = -1;                     // the checkpoint's time a restart went on from; -1: none
 };
 
