@@ -83,7 +83,10 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
                                                fmt("%.3f", r.solves.condense_seconds) + " s; solver.springs_follow_beta)\n"
                                          : std::string())
       << "  wall time               " << fmt("%.3f", r.wall_seconds) << " s (setup " << fmt("%.4f", r.setup_seconds)
-      << " s)" << (r.restarted_at >= 0 ? " since the restart at t = " + fmt("%g", r.restarted_at) + " s" : "") << "\n";
+      << " s)" << (r.restarted_at >= 0 ? " since the restart at t = " + fmt("%g", r.restarted_at) + " s" : "") << "\n"
+      << "  of it: contact solves   " << fmt("%.3f", r.solves.seconds) << " s ("
+      << fmt("%.3g", 1e3 * r.solves.seconds / double(std::max(1L, r.solves.contact_solves))) << " ms each), "
+      << r.body_solves << " solves of the body " << fmt("%.3f", r.body_solve_seconds) << " s\n";
 
   const EnergyTerms& e = r.energy;
   const bool rate_independent = cfg.integrator.method == Method::RateIndependent;
@@ -159,6 +162,9 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"sweeps_max", r.solves.max_sweeps},
                        {"condensations", r.solves.condensations},
                        {"condense_seconds", r.solves.condense_seconds},
+                       {"contact_solve_seconds", r.solves.seconds},
+                       {"body_solves", r.body_solves},
+                       {"body_solve_seconds", r.body_solve_seconds},
                        {"wall_seconds", r.wall_seconds},
                        {"restarted_at", r.restarted_at},
                        {"setup_seconds", r.setup_seconds},

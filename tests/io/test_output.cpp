@@ -168,6 +168,11 @@ TEST_CASE("a frame at every step solves the body once per accepted state: the be
   CHECK(r.body_solves == r.integrator.steps + 1);
   CHECK(r.body_solve_seconds > 0);
   CHECK(r.body_solve_seconds < r.wall_seconds);
+  std::ifstream json(dir / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(json);
+  CHECK(report["body_solves"].get<long>() == r.integrator.steps + 1);
+  CHECK(report["contact_solve_seconds"].get<double>() == r.solves.seconds);
+  CHECK(r.solves.seconds + r.body_solve_seconds + r.setup_seconds < r.wall_seconds);
   fs::remove_all(dir);
 }
 
