@@ -17,6 +17,7 @@ RunResult Simulation::run() {
   writing_started();                                  // a signal from now on stops at an accepted step
   recorder.open(model);                               // result files, only now that the input is known good
   BetaOde ode(model, make_contact_solver(cfg_.solver), [&](const AcceptedStep& a) {
+    share_stop_request();  // mpirun: all processes stop at one step; before the writes, process 0's alone
     recorder.step(a);                                 // energy, files, logs, checkpoints
     if (a.step > 0) throw_if_stop_requested(a.step, a.t);  // step 0 is recorded before the integrator exists
   });

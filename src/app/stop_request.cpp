@@ -2,6 +2,7 @@
 
 #include "rccm/base/child_process.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/la/parallel.hpp"
 
 #include <atomic>
 #include <csignal>
@@ -14,6 +15,9 @@ namespace rccm {
 namespace {
 volatile std::sig_atomic_t requested = 0;
 volatile std::sig_atomic_t at_once = 0;  // a run's set-up: nothing written yet
+// A stop asked of another process of an mpirun run (share_stop_request): not this process's
+// own first signal, which must still stop it cleanly, not at once.
+volatile std::sig_atomic_t shared = 0;
 
 std::atomic_flag exiting = ATOMIC_FLAG_INIT;  // lock-free: a signal handler may use it
 
@@ -58,9 +62,14 @@ void install_stop_handlers() {
   std::signal(SIGTERM, on_signal);
 }
 
-int stop_signal() { return requested; }
+int stop_signal() { return requested ? requested : shared; }
 
 void request_stop(int signal) { requested = signal; }
+
+void share_stop_request() {
+  if (parallel::size() == 1) return;
+  shared = parallel::largest(stop_signal());
+}
 
 void throw_if_stop_requested(int step, double t) {
   if (const int signal = stop_signal())

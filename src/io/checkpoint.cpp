@@ -233,7 +233,7 @@ Checkpoint read_checkpoint(const std::string& directory, const Config& cfg) {
               solves.minCoeff() >= 0 && integrator.minCoeff() >= 0,
           "6 solve and 4 integrator counts, none negative");
   p.solves = {long(solves[0]), long(solves[1]), int(solves[2]), solves[3], long(solves[4]), solves[5]};
-  p.integrator = {long(integrator[0]), long(integrator[1]), long(integrator[2]), long(integrator[3])};
+  p.integrator = {long(integrator[0]), long(integrator[1]), long(integrator[2]), long(integrator[3]), {}};
   for (long k = r.count("snapshots", 1e6); k > 0; --k) {
     Snapshot s;
     s.t = r.number("snapshot_t");

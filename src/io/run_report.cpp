@@ -28,6 +28,9 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "mesh: " << r.nodes << " nodes, " << r.cells << " cells, " << r.dofs << " DOFs, " << r.contact_nodes
       << " contact nodes\n"
       << "body's solves: " << r.linear_solver << "\n";
+  if (const StateSlices& s = r.integrator.slices; s.processes > 0)
+    out << "beta (ARKODE's state) distributed over " << s.processes << " processes: " << s.smallest << " to "
+        << s.largest << " contact pairs each, " << s.pairs << " in all\n";
   const bool solid = cfg.mesh.dim() == 3;
   out << "bodies (" << (solid ? "3D" : hypothesis_name(cfg.hypothesis())) << "):";
   for (const std::string& b : r.bodies) out << " " << b;
@@ -151,6 +154,11 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"dofs", r.dofs},
                        {"contact_nodes", r.contact_nodes},
                        {"linear_solver", r.linear_solver},
+                       {"beta_slices", I.slices.processes == 0 ? json(nullptr)
+                                                               : json{{"processes", I.slices.processes},
+                                                                      {"smallest", I.slices.smallest},
+                                                                      {"largest", I.slices.largest},
+                                                                      {"pairs", I.slices.pairs}}},
                        {"bodies", r.bodies},
                        {"pairs_per_interface", r.pairs_per_interface},
                        {"steps", I.steps},

@@ -47,6 +47,12 @@ void start() {
 int rank() { return my_rank; }
 int size() { return my_size; }
 
+int largest(int value) {
+  int all = value;
+  if (my_size > 1) MPI_Allreduce(&value, &all, 1, MPI_INT, MPI_MAX, PETSC_COMM_WORLD);
+  return all;
+}
+
 void abort(int status) {
   if (my_size > 1) {
     // Process 0 writes the stopped run's checkpoint and reports, then aborts everyone: the

@@ -13,7 +13,7 @@ namespace rccm {
 
 IntegratorStats operator+(const IntegratorStats& a, const IntegratorStats& b) {
   return {a.steps + b.steps, a.rejected + b.rejected, a.rhs_evaluations + b.rhs_evaluations,
-          a.newton_iterations + b.newton_iterations};
+          a.newton_iterations + b.newton_iterations, b.slices};
 }
 
 void FixedStepIntegrator::advance(double t_out) {

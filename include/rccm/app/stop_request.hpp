@@ -22,6 +22,11 @@ int stop_signal();
 /// Asks to stop as the signal `signal` would (tests); 0 withdraws the request.
 void request_stop(int signal);
 
+/// Under mpirun with several processes: a stop asked of any process is asked of all of them
+/// (each gets its signal at its own moment), so that all stop at the same accepted step; every
+/// process calls it at every accepted step. In one process, nothing.
+void share_stop_request();
+
 /// Throws Interrupted naming the step and time when a stop was asked.
 void throw_if_stop_requested(int step, double t);
 

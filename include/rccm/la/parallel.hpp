@@ -1,7 +1,8 @@
 // The processes of a run. One, unless rccm was launched by mpirun with several: then MPI and
 // PETSc start with the run, every process runs the same program on the same data (the contact
-// problem and beta replicated), the body's solves are distributed (la/petsc_solver.hpp), and
-// only process 0 writes. In one process PETSc starts only when a PETSc solver is asked for.
+// problem replicated), the body's solves are distributed (la/petsc_solver.hpp), so is ARKODE's
+// state beta (time/arkode_integrator.hpp), and only process 0 writes. In one process PETSc
+// starts only when a PETSc solver is asked for.
 #pragma once
 
 namespace rccm::parallel {
@@ -16,6 +17,10 @@ void start();
 /// This process's rank and the number of processes (0 and 1 before start()).
 int rank();
 int size();
+
+/// The largest of `value` over the processes, on every process (each must call it); in one
+/// process, `value`.
+int largest(int value);
 
 /// Ends the program with `status`: with several processes, all of them (MPI_Abort), so that
 /// none waits forever for a process that stopped on an error; a process other than 0 first

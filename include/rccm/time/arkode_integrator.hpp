@@ -3,6 +3,10 @@
 // state is recomputed and committed (ARKStepSetPostprocessStepFn). Implicit DIRK (default:
 // the ODE is stiff, its rate (Cn u_n^2 + Ct u_t^2)/alpha grows without bound as alpha -> 0)
 // with modified Newton on the diagonal Jacobian, solved by KLU; or explicit ERK.
+// Under mpirun with several processes ARKODE's state is distributed: each process holds a
+// contiguous slice of the contact pairs (NVECTOR_PARALLEL), gathers the whole beta for each
+// contact solve (replicated) and solves the diagonal Newton matrix exactly (GMRES with the
+// exact inverse as preconditioner, no extra contact solve).
 // A contact solve that fails inside a stage is a recoverable RHS failure: ARKODE cuts the step.
 #pragma once
 

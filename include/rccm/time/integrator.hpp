@@ -12,14 +12,23 @@
 
 namespace rccm {
 
+/// How the integrator's state is split among the processes of an mpirun run (ARKODE's, each
+/// process holding a slice of the contact pairs): from `smallest` to `largest` pairs each,
+/// `pairs` in all. processes = 0: not split, every process holds the whole state.
+struct StateSlices {
+  int processes = 0;
+  int smallest = 0, largest = 0, pairs = 0;
+};
+
 struct IntegratorStats {
   long steps = 0;              // accepted steps
   long rejected = 0;           // failed error tests and nonlinear solves (ARKODE)
   long rhs_evaluations = 0;    // f(t, beta) calls, each a contact solve
   long newton_iterations = 0;  // ARKODE nonlinear iterations; fixed-point iterations (rate-independent)
+  StateSlices slices;          // of the state among the processes (ARKODE under mpirun)
 };
 
-/// Counts of two parts of a run (before and after a restart).
+/// Counts of two parts of a run (before and after a restart); the slices of the second.
 IntegratorStats operator+(const IntegratorStats& a, const IntegratorStats& b);
 
 class BetaIntegrator {
