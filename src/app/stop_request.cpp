@@ -15,8 +15,9 @@ namespace rccm {
 namespace {
 volatile std::sig_atomic_t requested = 0;
 volatile std::sig_atomic_t at_once = 0;  // a run's set-up: nothing written yet
-// A stop asked of another process of an mpirun run (share_stop_request): not this process's
-// own first signal, which must still stop it cleanly, not at once.
+// Under mpirun: the stop all processes agreed on at the last share_stop_request, the one they
+// act on (a signal that reaches a process after it waits for the next step's agreement). Not
+// this process's own first signal: a signal after it must still stop it cleanly, not at once.
 volatile std::sig_atomic_t shared = 0;
 
 std::atomic_flag exiting = ATOMIC_FLAG_INIT;  // lock-free: a signal handler may use it
@@ -72,7 +73,7 @@ void share_stop_request() {
 }
 
 void throw_if_stop_requested(int step, double t) {
-  if (const int signal = stop_signal())
+  if (const int signal = parallel::size() > 1 ? int(shared) : stop_signal())
     throw Interrupted("stopped by signal " + std::to_string(signal) + " after step " + std::to_string(step) +
                           " at t = " + std::to_string(t) + " s",
                       signal);

@@ -27,7 +27,8 @@ void request_stop(int signal);
 /// process calls it at every accepted step. In one process, nothing.
 void share_stop_request();
 
-/// Throws Interrupted naming the step and time when a stop was asked.
+/// Throws Interrupted naming the step and time when a stop was asked; under mpirun, when one
+/// was asked by the last share_stop_request (a signal since then waits for the next).
 void throw_if_stop_requested(int step, double t);
 
 }  // namespace rccm
