@@ -110,7 +110,7 @@ def pid_of_rank(mpirun_pid, rank):
                 ancestors.append(pid)
         except (OSError, ValueError, IndexError):
             continue
-        if mpirun_pid in ancestors and ("OMPI_COMM_WORLD_RANK=%d" % rank).encode() in env:
+        if mpirun_pid in ancestors and any(("%s=%d" % (v, rank)).encode() in env for v in ("OMPI_COMM_WORLD_RANK", "PMI_RANK")):
             return int(entry)
     return None
 
