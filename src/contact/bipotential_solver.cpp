@@ -55,7 +55,8 @@ class BipotentialSolver::Iteration {
     s.status.assign(pb.size(), Status::Separated);
     for (int i = 0; i < pb.size(); ++i)
       if (blocks_[i].prescribed) pair<dim>(s.Rbar, i).setZero(), pair<dim>(s.y, i).setZero();
-    s.u.resize(m);
+    s.u = Eigen::VectorXd::Zero(m);
+    if (pb.W0->single_precision_sweeps()) correction_ = Eigen::VectorXd::Zero(m);
     refresh();
     s.Rbar = s.y - E_.cwiseProduct(s.u);
     R_projected_ = Eigen::VectorXd::Zero(m);
@@ -112,11 +113,13 @@ class BipotentialSolver::Iteration {
   /// tuning::refresh_interval sweeps (Jacobi: every sweep); in between, Gauss-Seidel's
   /// incremental u differs from it by the round-off of fewer sweeps, far below the tolerance,
   /// so convergence is judged on it without another product (a tenth of a 3D solve), unless
-  /// extrapolations with large weights may have amplified that round-off (mixed_u_weight).
+  /// extrapolations with large weights may have amplified that round-off (mixed_u_weight) or
+  /// the sweeps updated u to single precision only (a compressed W0): then on a fresh u.
   bool converged_after_sweep(const Eigen::VectorXd& R_old) {
-    if (params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0) refresh();
+    const bool fresh = params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0;
+    if (fresh) refresh();
     if (!criteria_hold(R_old)) return false;
-    if (u_weight_ > tuning::mixed_u_weight) {
+    if (u_weight_ > tuning::mixed_u_weight || (pb_.W0->single_precision_sweeps() && !fresh)) {
       refresh();
       if (!criteria_hold(R_old)) return false;
     }
@@ -148,6 +151,7 @@ class BipotentialSolver::Iteration {
 
   /// Anderson's extrapolation after a sweep that started at y_in (anderson.hpp); Rbar follows.
   void accelerate(AndersonMixing& anderson, const Eigen::VectorXd& y_in) {
+    if (correction_.size() > 0) anderson.correct_u(correction_), correction_.setZero();
     u_weight_ *= 1 + anderson.mix(y_in, s.y, s.u);
     s.Rbar = s.y - E_.cwiseProduct(s.u);
   }
@@ -170,8 +174,11 @@ class BipotentialSolver::Iteration {
     return tuning::cancellation_floor * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff();
   }
   void refresh() {
+    const bool tracked = correction_.size() > 0;
+    if (tracked) correction_ -= s.u;
     pb_.W0->multiply(s.y, s.u);
     s.u += pb_.q0;
+    if (tracked) correction_ += s.u;
     u_weight_ = 1;
   }
   /// The verifying pass costs as much as a sweep's local solves (on a sparse W0, half the
@@ -195,6 +202,7 @@ class BipotentialSolver::Iteration {
   Verification check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
   double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
+  Eigen::VectorXd correction_;  // single-precision sweeps: what products changed of their u since the last extrapolation
 };
 
 ContactSolution BipotentialSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
