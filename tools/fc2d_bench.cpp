@@ -10,6 +10,20 @@
 // solvers against Siconos").
 // --copies K poses each later sparse file K times over, as K independent problems in one
 // (W block-diagonal): a size test of the sparse path (the solution is K copies of one).
+//
+// What is timed, per solve (each side's calls repeated until 50 ms have passed):
+// - ours, cold: one call of the timed lambda, the loop's clock read and std::function call
+//   included: forget_W0() (the exact step's factorization, rccm's inverse of W0: nothing
+//   factorized by the previous call serves this one), then solve(pb, {}, {}) from zero: the
+//   pairs' blocks, the sweeps, exact steps and verifying passes, the solution's vectors, and
+//   its move into the caller's (freeing the previous call's). Not timed: constructing the
+//   solver (make_contact_solver, once per row, as a run builds its solver once), reading and
+//   posing the problem, the error measure. Warm rows: solve() from the previous step's
+//   solution by a solver that keeps its factorization, as in a run.
+// - Siconos: the time between two clock reads around fc2d_driver / fc3d_driver (peer::solve):
+//   its NSGS from zero, with whatever the driver allocates. Not timed: the copy of the problem
+//   into Siconos' storage, solver_options_create / delete, the reaction and velocity arrays
+//   (allocated and zeroed before), the reordering of the result, the error measure.
 #include "rccm/contact/contact_solver.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/fem/mesh_source.hpp"
@@ -53,6 +67,16 @@ double siconos_nsgs(const PlainContactProblem& p, double tolerance, peer::PeerSo
   return inside / calls;
 }
 
+/// Seconds per cold solve of `pb` from zero by one solver of `params`, built outside the timing
+/// and made to forget W0 before every solve; `s`: the solution.
+double cold_seconds(const SolverParams& params, const ContactProblem& pb, ContactSolution& s) {
+  const std::unique_ptr<ContactSolver> solver = make_contact_solver(params);
+  return seconds_per_call([&] {
+    solver->forget_W0();
+    s = solver->solve(pb, {}, {});
+  });
+}
+
 void row(const std::string& name, int contacts, const char* solver, int iterations, double error, double seconds,
          double ratio, bool converged) {
   std::printf("%-42s %8d  %-19s %10d %12.3e %12.4f %10s%s\n", name.c_str(), contacts, solver, iterations, error,
@@ -91,7 +115,7 @@ void to_siconos_error(const std::string& name, const PlainContactProblem& p, con
     (reaches(mid) ? enough : fewer) = mid;
   }
   params.max_iterations = enough;
-  const double seconds = seconds_per_call([&] { s = make_contact_solver(params)->solve(pb, {}, {}); });
+  const double seconds = cold_seconds(params, pb, s);
   const std::string label = name + " to Siconos' error at 1e-6";
   row(label, pb.size(), "bipotential-GS", enough, peer::error(p, s.Rbar), seconds, siconos_seconds / seconds, true);
   row(label, pb.size(), "siconos-NSGS", n.iterations, n.error, siconos_seconds, 1.0, n.info == 0);
@@ -116,7 +140,7 @@ double compare(const std::string& name, const PlainContactProblem& p, const Cont
     params.form = c.form;
     Measured m{c.name, {}, 0, 0};
     try {
-      m.seconds = seconds_per_call([&] { m.s = make_contact_solver(params)->solve(pb, {}, {}); });
+      m.seconds = cold_seconds(params, pb, m.s);
     } catch (const SolveError& e) {  // a solver that cannot take this problem says why
       std::printf("%-42s %8d  %-14s  cannot: %s\n", name.c_str(), pb.size(), c.name, e.what());
       continue;
