@@ -16,14 +16,16 @@ namespace rccm {
 
 namespace {
 
-/// The rows of each pair in the exact step, from its status and the direction of its friction.
+/// The rows of each pair in the exact step, from its status and the direction of its friction,
+/// into `p` (its memory reused).
 template <int dim>
-Pattern pattern_of(const std::vector<Status>& status, const std::vector<PairBlock<dim>>& blocks,
-                   const Eigen::VectorXd& Rbar) {
-  Pattern p(status.size());
+void pattern_of(const std::vector<Status>& status, const std::vector<PairBlock<dim>>& blocks,
+                const Eigen::VectorXd& Rbar, Pattern& p) {
+  p.resize(status.size());
   for (std::size_t i = 0; i < status.size(); ++i) {
     p[i].status = blocks[i].prescribed ? Status::Separated : status[i];
     p[i].held = blocks[i].held;
+    p[i].direction.setZero();
     if (p[i].status != Status::Slide) continue;
     const Eigen::Matrix<double, dim, 1> R = pair<dim>(Rbar, int(i));
     const double Rt = tangential_norm(R);
@@ -32,21 +34,20 @@ Pattern pattern_of(const std::vector<Status>& status, const std::vector<PairBloc
     else
       p[i].direction[0] = -1.0;
   }
-  return p;
 }
 
 }  // namespace
 
-/// The state of one contact solve: y = Rbar + E u, u = W0 y + q0 and Rbar, the pairs' blocks,
-/// and what each pass finds.
+/// The state of one contact solve: y = Rbar + E u, u = W0 y + q0 and Rbar (in the solution `s`),
+/// the pairs' blocks, and what each pass finds.
 template <int dim>
 class BipotentialSolver::Iteration {
   using Vec = Eigen::Matrix<double, dim, 1>;
 
  public:
   Iteration(const ContactProblem& pb, const SolverParams& params, const Eigen::VectorXd& Rbar_start,
-            const Eigen::VectorXd& u_start)
-      : pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), E_(pb.Dref - pb.Dbeta) {
+            const Eigen::VectorXd& u_start, ContactSolution& solution)
+      : s(solution), pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), E_(pb.Dref - pb.Dbeta) {
     const Eigen::Index m = pb.W0->size();
     // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
     s.Rbar = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
@@ -60,26 +61,21 @@ class BipotentialSolver::Iteration {
     refresh();
     s.Rbar = s.y - E_.cwiseProduct(s.u);
     R_projected_ = Eigen::VectorXd::Zero(m);
-    check_.branch.assign(pb.size(), Status::Separated);
-    check_.projected = Eigen::VectorXd::Zero(m);
   }
 
-  ContactSolution s;
+  ContactSolution& s;
 
   /// A predictor-corrector pass at the current (Rbar, u) that changes nothing: each pair's
   /// branch and projection, and the largest scaled natural-map residual (pair_block.hpp).
-  /// Returns the force scale of the problem.
-  double verify() {
-    check_ = verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, noise_floor() / params_.tolerance);
-    s.residual = check_.residual;
-    s.worst_node = check_.worst_node;
-    return check_.force_scale;
-  }
+  void verify() { verify(force_level(pb_, s.Rbar, s.u), noise_floor() / params_.tolerance); }
 
   /// One sweep of the predictor-corrector over every pair (paper eqs. 35-38): Gauss-Seidel
   /// updates u after each pair (docs/MODEL.md s5: far more robust), the paper's Jacobi form
-  /// after the sweep.
+  /// after the sweep. The sweep's Rbar and y on entry are kept for the convergence check
+  /// and the extrapolation.
   void sweep() {
+    Rbar_in_ = s.Rbar;
+    y_in_ = s.y;
     const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
     const double noise = noise_floor();
     const double F_old = force_level(pb_, s.Rbar, s.u);
@@ -102,26 +98,25 @@ class BipotentialSolver::Iteration {
       }, s.y, s.u);
       return;
     }
-    Eigen::VectorXd y_new = s.y;  // the Jacobi form's next y
-    for (int i = 0; i < pb_.size(); ++i)
-      if (!blocks_[i].prescribed) pair<dim>(y_new, i) = local(i);
-    s.y += params_.relaxation * (y_new - s.y);
+    for (int i = 0; i < pb_.size(); ++i)  // the Jacobi form's next y (local(i) reads pair i of y only) ...
+      if (!blocks_[i].prescribed) pair<dim>(s.y, i) = local(i);
+    s.y = y_in_ + params_.relaxation * (s.y - y_in_);  // ... under-relaxed
   }
 
-  /// After a sweep: Rbar = y - E u, and whether its relative change since R_old and the
+  /// After a sweep: Rbar = y - E u, and whether its relative change over the sweep and the
   /// scaled natural-map residual are both below the tolerance. A fresh u = W0 y + q0 every
   /// tuning::refresh_interval sweeps (Jacobi: every sweep); in between, Gauss-Seidel's
   /// incremental u differs from it by the round-off of fewer sweeps, far below the tolerance,
   /// so convergence is judged on it without another product (a tenth of a 3D solve), unless
   /// extrapolations with large weights may have amplified that round-off (mixed_u_weight) or
   /// the sweeps updated u to single precision only (a compressed W0): then on a fresh u.
-  bool converged_after_sweep(const Eigen::VectorXd& R_old) {
+  bool converged_after_sweep() {
     const bool fresh = params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0;
     if (fresh) refresh();
-    if (!criteria_hold(R_old)) return false;
+    if (!criteria_hold()) return false;
     if (u_weight_ > tuning::mixed_u_weight || (pb_.W0->single_precision_sweeps() && !fresh)) {
       refresh();
-      if (!criteria_hold(R_old)) return false;
+      if (!criteria_hold()) return false;
     }
     s.converged = true;
     s.Rbar = R_projected_;  // in the cone by construction (y - E u differs by round-off)
@@ -149,16 +144,16 @@ class BipotentialSolver::Iteration {
     return sweeps_left > double(pb_.W0->size()) / tuning::sweeps_per_factorization;
   }
 
-  /// Anderson's extrapolation after a sweep that started at y_in (anderson.hpp); Rbar follows.
-  void accelerate(AndersonMixing& anderson, const Eigen::VectorXd& y_in) {
+  /// Anderson's extrapolation after the sweep (anderson.hpp); Rbar follows.
+  void accelerate(AndersonMixing& anderson) {
     if (correction_.size() > 0) anderson.correct_u(correction_), correction_.setZero();
-    u_weight_ *= 1 + anderson.mix(y_in, s.y, s.u);
+    u_weight_ *= 1 + anderson.mix(y_in_, s.y, s.u);
     s.Rbar = s.y - E_.cwiseProduct(s.u);
   }
 
-  /// The pattern of the last verifying pass, and of the last sweep.
-  Pattern verified_pattern() const { return pattern_of<dim>(check_.branch, blocks_, check_.projected); }
-  Pattern swept_pattern() const { return pattern_of<dim>(s.status, blocks_, s.Rbar); }
+  /// The pattern of the last verifying pass, and of the last sweep, into `p`.
+  void verified_pattern(Pattern& p) const { pattern_of<dim>(check_.branch, blocks_, check_.projected, p); }
+  void swept_pattern(Pattern& p) const { pattern_of<dim>(s.status, blocks_, s.Rbar, p); }
 
   /// An exact step of the active-set system for `pattern`; false if its matrix is singular.
   bool exact_step(ActiveSetSystem<dim>& system, const Pattern& pattern) {
@@ -181,16 +176,22 @@ class BipotentialSolver::Iteration {
     if (tracked) correction_ += s.u;
     u_weight_ = 1;
   }
+  /// The verifying pass at `force` = force_level and `floor` = noise_floor() / tolerance.
+  void verify(double force, double floor) {
+    verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, force, floor, check_);
+    s.residual = check_.residual;
+    s.worst_node = check_.worst_node;
+  }
   /// The verifying pass costs as much as a sweep's local solves (on a sparse W0, half the
   /// sweep): it runs only once the change is below the tolerance.
-  bool criteria_hold(const Eigen::VectorXd& R_old) {
+  bool criteria_hold() {
     s.Rbar = s.y - E_.cwiseProduct(s.u);
-    const double scale = std::max(force_level(pb_, s.Rbar, s.u), noise_floor() / params_.tolerance);
-    const double change = (s.Rbar - R_old).cwiseAbs().maxCoeff() / scale;
+    const double force = force_level(pb_, s.Rbar, s.u), floor = noise_floor() / params_.tolerance;
+    const double change = (s.Rbar - Rbar_in_).cwiseAbs().maxCoeff() / std::max(force, floor);
     previous_change_ = change_;
     change_ = change;
     if (change > params_.tolerance) return false;
-    verify();
+    verify(force, floor);
     return s.residual <= params_.tolerance;
   }
 
@@ -199,6 +200,7 @@ class BipotentialSolver::Iteration {
   const std::vector<PairBlock<dim>> blocks_;
   const Eigen::VectorXd E_;
   Eigen::VectorXd R_projected_;  // the projections of the last sweep: the reported Rbar
+  Eigen::VectorXd Rbar_in_, y_in_;  // Rbar and y on entry to the last sweep
   Verification check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
   double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
@@ -222,11 +224,13 @@ ActiveSetSystem<3>& BipotentialSolver::active_set<3>() {
 template <int dim>
 ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
                                             const Eigen::VectorXd& u_start) {
-  Iteration<dim> it(pb, params_, Rbar_start, u_start);
-  ContactSolution& s = it.s;
+  ContactSolution s;
+  Iteration<dim> it(pb, params_, Rbar_start, u_start, s);
   // The exact step's dense matrices are bounded by active_set_max_nodes; compressed, by nothing.
   const bool exact = params_.active_set && (pb.W0->compressed() || (pb.size() <= params_.active_set_max_nodes && pb.W0->dense()));
   const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
+
+  Pattern pattern;  // of a pass (its memory reused from pass to pass)
 
   // Exact steps first (a primal-dual active-set iteration): from a warm start the pattern of
   // the nearby solution is usually still right, and one exact solve of its linear problem
@@ -237,9 +241,9 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
       ++s.iterations;
       it.verify();
       if (it.verified()) return s;
-      const Pattern pattern = it.verified_pattern();
+      it.verified_pattern(pattern);
       if (pattern == tried || !it.exact_step(active_set<dim>(), pattern)) break;
-      tried = pattern;
+      std::swap(tried, pattern);
       ++s.exact_solves;
     }
   }
@@ -253,21 +257,19 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
   int repeats = 0, since_exact = 0;
   const auto exact_step_due = [&] {
     if (!exact) return false;
-    const Pattern pattern = it.swept_pattern();
+    it.swept_pattern(pattern);
     repeats = pattern == previous ? repeats + 1 : 0;
-    previous = pattern;
+    std::swap(previous, pattern);
     ++since_exact;
-    return repeats >= 1 && (pattern != solved || since_exact >= tuning::exact_step_interval) &&
+    return repeats >= 1 && (previous != solved || since_exact >= tuning::exact_step_interval) &&
            s.exact_solves < tuning::max_exact_steps && it.exact_step_pays(active_set<dim>());
   };
   AndersonMixing anderson(gauss_seidel ? params_.anderson : 0);
   for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
-    const Eigen::VectorXd R_old = s.Rbar;
-    const Eigen::VectorXd y_in = s.y;
     it.sweep();
-    if (it.converged_after_sweep(R_old)) break;
+    if (it.converged_after_sweep()) break;
     if (!exact_step_due()) {
-      if (s.iterations <= tuning::anderson_sweeps) it.accelerate(anderson, y_in);
+      if (s.iterations <= tuning::anderson_sweeps) it.accelerate(anderson);
       continue;
     }
     it.exact_step(active_set<dim>(), previous);  // if singular, the sweeps go on

@@ -139,7 +139,8 @@ class NewtonSolver::Iteration {
   bool verified() {
     // Rbar = y - E u cancels where beta -> 0: its attainable accuracy is about eps |y|.
     const double noise = tuning::cancellation_floor * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff();
-    const Verification check = verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, noise / params_.tolerance);
+    Verification check;
+    verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, force_level(pb_, s.Rbar, s.u), noise / params_.tolerance, check);
     s.residual = check.residual;
     s.worst_node = check.worst_node;
     s.status = check.branch;

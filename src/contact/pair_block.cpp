@@ -131,14 +131,13 @@ double force_level(const ContactProblem& pb, const Eigen::VectorXd& Rbar, const 
 }
 
 template <int dim>
-Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks,
-                         const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u, double floor) {
+void verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks, const Eigen::VectorXd& Rbar,
+                 const Eigen::VectorXd& u, double force, double floor, Verification& v) {
   using Vec = typename PairBlock<dim>::Vec;
-  const Eigen::VectorXd Radh = -pb.Dbeta.cwiseProduct(u);
-  const double F = force_level(pb, Rbar, u);
-  Verification v;
-  v.branch.assign(pb.size(), Status::Separated);
-  v.projected = Eigen::VectorXd::Zero(Rbar.size());
+  v.residual = 0;
+  v.worst_node = -1;
+  v.branch.resize(pb.size());
+  v.projected.resize(Rbar.size());
   for (int i = 0; i < pb.size(); ++i) {
     const PairBlock<dim>& b = blocks[i];
     // A pair with every component prescribed takes no part: its Rbar is 0 by convention.
@@ -146,12 +145,11 @@ Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<d
     const Vec tau = b.predictor(R, pair<dim>(u, i));  // eq. 35
     v.branch[i] = b.prescribed ? Status::Separated : cone_branch(tau, b.mubar);
     pair<dim>(v.projected, i) = b.prescribed ? R : project_cone(tau, b.mubar);  // eqs. 36-38
-    const double level = std::max({R.norm() + pair<dim>(Radh, i).norm(), tuning::residual_level_floor * F, floor});
+    const Vec Radh = pair<dim>(pb.Dbeta, i).cwiseProduct(pair<dim>(u, i));  // -Radh: the same norm
+    const double level = std::max({R.norm() + Radh.norm(), tuning::residual_level_floor * force, floor});
     const double r = (R - pair<dim>(v.projected, i)).norm() / level;
     if (r > v.residual || v.worst_node < 0) v.residual = r, v.worst_node = i;
   }
-  v.force_scale = std::max(F, floor);
-  return v;
 }
 
 template std::vector<PairBlock<2>> make_blocks<2>(const ContactProblem&, RhoRule);
@@ -164,9 +162,9 @@ template Status solve_pair<2>(const PairBlock<2>&, const Eigen::Vector2d&, Eigen
                               double);
 template Status solve_pair<3>(const PairBlock<3>&, const Eigen::Vector3d&, Eigen::Vector3d&, int, double, double,
                               double);
-template Verification verify_pass<2>(const ContactProblem&, const std::vector<PairBlock<2>>&, const Eigen::VectorXd&,
-                                     const Eigen::VectorXd&, double);
-template Verification verify_pass<3>(const ContactProblem&, const std::vector<PairBlock<3>>&, const Eigen::VectorXd&,
-                                     const Eigen::VectorXd&, double);
+template void verify_pass<2>(const ContactProblem&, const std::vector<PairBlock<2>>&, const Eigen::VectorXd&,
+                             const Eigen::VectorXd&, double, double, Verification&);
+template void verify_pass<3>(const ContactProblem&, const std::vector<PairBlock<3>>&, const Eigen::VectorXd&,
+                             const Eigen::VectorXd&, double, double, Verification&);
 
 }  // namespace rccm

@@ -120,7 +120,8 @@ class RccmSolver::Iteration {
   /// bipotential solver, its projections are the result (exactly 0 where separated, in the
   /// cone; they differ from the gradient by the residual).
   bool verified() {
-    const Verification check = verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, noise_floor() / params_.tolerance);
+    Verification check;
+    verify_pass<dim>(pb_, blocks_, s.Rbar, s.u, force_level(pb_, s.Rbar, s.u), noise_floor() / params_.tolerance, check);
     s.residual = check.residual;
     s.worst_node = check.worst_node;
     s.status = check.branch;

@@ -14,13 +14,18 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/QR>
 
 namespace rccm {
 
 class AndersonMixing {
  public:
   /// depth: the differences kept (0: no acceleration).
-  explicit AndersonMixing(int depth) : depth_(depth) {}
+  explicit AndersonMixing(int depth) : depth_(depth) {
+    // A rank-revealing QR: nearly parallel differences (a stagnating sweep) are dropped
+    // rather than amplified.
+    qr_.setThreshold(1e-10);
+  }
 
   /// A sweep took y_in to (y, u = W0 y + q0): replaces (y, u) by the extrapolated iterate.
   /// Returns the combination's weight sum |gamma_k| (0: no extrapolation): the mixed u
@@ -39,8 +44,11 @@ class AndersonMixing {
   int depth_;
   int count_ = 0, next_ = 0;  // columns held, and the one to overwrite next
   bool has_previous_ = false;
-  Eigen::VectorXd f_previous_, G_previous_, u_previous_;
+  Eigen::VectorXd f_, f_previous_, G_previous_, u_previous_;
   Eigen::MatrixXd dF_, dG_, dU_;  // m x depth, circular
+  // The least-squares problem's factorization and solution (kept: their memory is reused).
+  Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr_;
+  Eigen::VectorXd gamma_;
 };
 
 }  // namespace rccm

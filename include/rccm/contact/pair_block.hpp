@@ -69,14 +69,15 @@ struct Verification {
   int worst_node = -1;
   std::vector<Status> branch;
   Eigen::VectorXd projected;  // in the cone by construction: a converged solve's Rbar
-  double force_scale = 0;     // max(|Rbar|, |Radh|, floor)
 };
 /// The problem's force level: the largest |Rbar| or |Radh| = |D(beta) u| component (at least
 /// 1e-300), the scale of the verifying pass and of a sweep's change of Rbar.
 double force_level(const ContactProblem& pb, const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u);
 
+/// The pass into `v` (its vectors reused); `force`: force_level(pb, Rbar, u), which the
+/// callers have at hand.
 template <int dim>
-Verification verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks,
-                         const Eigen::VectorXd& Rbar, const Eigen::VectorXd& u, double floor);
+void verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& blocks, const Eigen::VectorXd& Rbar,
+                 const Eigen::VectorXd& u, double force, double floor, Verification& v);
 
 }  // namespace rccm
