@@ -91,7 +91,7 @@ class BipotentialSolver::Iteration {
       return R + b.E.cwiseProduct(Vec(b.Wb * R + c));
     };
     if (gauss_seidel) {
-      pb_.W0->gauss_seidel(dim, [&](int i) {
+      gauss_seidel_pass<dim>(*pb_.W0, [&](int i) {
         if (blocks_[i].prescribed) return;
         pair<dim>(s.y, i) = local(i);
         pair<dim>(s.Rbar, i) = pair<dim>(R_projected_, i);

@@ -8,12 +8,7 @@ namespace rccm {
 
 void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                                     Eigen::VectorXd& u) const {
-  for (Eigen::Index first = 0; first < size(); first += dim) {
-    const LocalVector old = y.segment(first, dim);
-    update(static_cast<int>(first / dim));
-    const LocalVector dy = y.segment(first, dim) - old;
-    if (!dy.isZero(0.0)) add_response(first, dy, u);  // a pair left as it was (separated, at 0) moves nothing
-  }
+  pass_over_pairs<LocalVector>(dim, update, [&](Eigen::Index first, const LocalVector& dy) { add_response(first, dy, u); }, y);
 }
 
 void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
@@ -21,18 +16,9 @@ void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::
 }
 
 void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
-  // The sweeps' inner loop (half a 3D run's time): the pair's 2-3 columns in one pass over u.
-  const Eigen::Index m = W_.rows();
-  const double* w = W_.data() + first * m;
-  double* x = u.data();
-  if (dy.size() == 2) {
-    const double a = dy[0], b = dy[1];
-    for (Eigen::Index i = 0; i < m; ++i) x[i] += w[i] * a + w[m + i] * b;
-  } else {
-    RCCM_VERIFY(dy.size() == 3, "add_response(): a pair has 2 or 3 components");
-    const double a = dy[0], b = dy[1], c = dy[2];
-    for (Eigen::Index i = 0; i < m; ++i) x[i] += w[i] * a + w[m + i] * b + w[2 * m + i] * c;
-  }
+  if (dy.size() == 2) return add_columns<2>(W_, first, dy, u);
+  RCCM_VERIFY(dy.size() == 3, "add_response(): a pair has 2 or 3 components");
+  add_columns<3>(W_, first, dy, u);
 }
 
 CompressedDelassus::CompressedDelassus(HodlrMatrix W)

@@ -177,7 +177,7 @@ class NewtonSolver::Iteration {
   /// (pair_block.hpp) with the other pairs held, u updated at once.
   void sweep() {
     const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
-    pb_.W0->gauss_seidel(dim, [&](int i) {
+    gauss_seidel_pass<dim>(*pb_.W0, [&](int i) {
       const PairBlock<dim>& b = blocks_[i];
       if (b.prescribed) return;
       const Vec c = b.M * (pair<dim>(s.u, i) - b.Wii * pair<dim>(s.y, i));
