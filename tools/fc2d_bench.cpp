@@ -18,8 +18,10 @@
 //   pairs' blocks, the sweeps, exact steps and verifying passes, the solution's vectors, and
 //   its move into the caller's (freeing the previous call's). Not timed: constructing the
 //   solver (make_contact_solver, once per row, as a run builds its solver once), reading and
-//   posing the problem, the error measure. Warm rows: solve() from the previous step's
-//   solution by a solver that keeps its factorization, as in a run.
+//   posing the problem, the error measure. The bipotential solver keeps its scratch vectors'
+//   memory from call to call, as in a run (not their contents: each solve sets them afresh).
+//   Warm rows: solve() from the previous step's solution by a solver that keeps its
+//   factorization, as in a run.
 // - Siconos: the time between two clock reads around fc2d_driver / fc3d_driver (peer::solve):
 //   its NSGS from zero, with whatever the driver allocates. Not timed: the copy of the problem
 //   into Siconos' storage, solver_options_create / delete, the reaction and velocity arrays

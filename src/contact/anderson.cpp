@@ -9,7 +9,7 @@ double AndersonMixing::mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eige
   const Eigen::Index m = y.size();
   f_ = y - y_in;  // the sweep's residual
   if (has_previous_) {
-    if (dF_.rows() != m) dF_.resize(m, depth_), dG_.resize(m, depth_), dU_.resize(m, depth_);
+    if (dF_.rows() != m || dF_.cols() != depth_) dF_.resize(m, depth_), dG_.resize(m, depth_), dU_.resize(m, depth_);
     dF_.col(next_) = f_ - f_previous_;
     dG_.col(next_) = y - G_previous_;
     dU_.col(next_) = u - u_previous_;

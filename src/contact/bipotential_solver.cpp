@@ -39,15 +39,18 @@ void pattern_of(const std::vector<Status>& status, const std::vector<PairBlock<d
 }  // namespace
 
 /// The state of one contact solve: y = Rbar + E u, u = W0 y + q0 and Rbar (in the solution `s`),
-/// the pairs' blocks, and what each pass finds.
+/// the pairs' blocks, and what each pass finds (in the solver's buffers).
 template <int dim>
 class BipotentialSolver::Iteration {
   using Vec = Eigen::Matrix<double, dim, 1>;
 
  public:
   Iteration(const ContactProblem& pb, const SolverParams& params, const Eigen::VectorXd& Rbar_start,
-            const Eigen::VectorXd& u_start, ContactSolution& solution)
-      : s(solution), pb_(pb), params_(params), blocks_(make_blocks<dim>(pb, params.rho)), E_(pb.Dref - pb.Dbeta) {
+            const Eigen::VectorXd& u_start, ContactSolution& solution, Buffers<dim>& buffers)
+      : s(solution), pb_(pb), params_(params), blocks_(buffers.blocks), E_(buffers.E),
+        R_projected_(buffers.R_projected), Rbar_in_(buffers.Rbar_in), y_in_(buffers.y_in), check_(buffers.check) {
+    make_blocks<dim>(pb, params.rho, blocks_);
+    E_ = pb.Dref - pb.Dbeta;
     const Eigen::Index m = pb.W0->size();
     // Warm start: y from the previous Rbar and u (consistent if nothing changed), then u from y.
     s.Rbar = Rbar_start.size() == m ? Rbar_start : Eigen::VectorXd::Zero(m);
@@ -60,7 +63,7 @@ class BipotentialSolver::Iteration {
     if (pb.W0->single_precision_sweeps()) correction_ = Eigen::VectorXd::Zero(m);
     refresh();
     s.Rbar = s.y - E_.cwiseProduct(s.u);
-    R_projected_ = Eigen::VectorXd::Zero(m);
+    R_projected_.setZero(m);
   }
 
   ContactSolution& s;
@@ -197,11 +200,11 @@ class BipotentialSolver::Iteration {
 
   const ContactProblem& pb_;
   const SolverParams& params_;
-  const std::vector<PairBlock<dim>> blocks_;
-  const Eigen::VectorXd E_;
-  Eigen::VectorXd R_projected_;  // the projections of the last sweep: the reported Rbar
-  Eigen::VectorXd Rbar_in_, y_in_;  // Rbar and y on entry to the last sweep
-  Verification check_;           // the last verifying pass
+  std::vector<PairBlock<dim>>& blocks_;
+  Eigen::VectorXd& E_;
+  Eigen::VectorXd& R_projected_;  // the projections of the last sweep: the reported Rbar
+  Eigen::VectorXd &Rbar_in_, &y_in_;  // Rbar and y on entry to the last sweep
+  Verification& check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
   double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
   Eigen::VectorXd correction_;  // single-precision sweeps: what products changed of their u since the last extrapolation
@@ -220,23 +223,33 @@ template <>
 ActiveSetSystem<3>& BipotentialSolver::active_set<3>() {
   return active_set_3d_;
 }
+template <>
+BipotentialSolver::Buffers<2>& BipotentialSolver::buffers<2>() {
+  return buffers_2d_;
+}
+template <>
+BipotentialSolver::Buffers<3>& BipotentialSolver::buffers<3>() {
+  return buffers_3d_;
+}
 
 template <int dim>
 ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
                                             const Eigen::VectorXd& u_start) {
   ContactSolution s;
-  Iteration<dim> it(pb, params_, Rbar_start, u_start, s);
+  Buffers<dim>& kept = buffers<dim>();
+  Iteration<dim> it(pb, params_, Rbar_start, u_start, s, kept);
   // The exact step's dense matrices are bounded by active_set_max_nodes; compressed, by nothing.
   const bool exact = params_.active_set && (pb.W0->compressed() || (pb.size() <= params_.active_set_max_nodes && pb.W0->dense()));
   const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
 
-  Pattern pattern;  // of a pass (its memory reused from pass to pass)
+  Pattern& pattern = kept.pattern;  // of a pass
 
   // Exact steps first (a primal-dual active-set iteration): from a warm start the pattern of
   // the nearby solution is usually still right, and one exact solve of its linear problem
   // leaves a single verifying pass. A pattern that does not settle is left to the sweeps.
   if (exact && gauss_seidel && Rbar_start.size() == pb.W0->size()) {
-    Pattern tried;
+    Pattern& tried = kept.tried;
+    tried.clear();
     for (int k = 0; k < tuning::exact_first_patterns && s.iterations < params_.max_iterations; ++k) {
       ++s.iterations;
       it.verify();
@@ -253,7 +266,9 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
   // repeats, an exact step for it instead (then verified by the next sweep), and again every
   // few sweeps if the same pattern persists unconverged. The warm start's pattern counts as
   // seen: the exact step may follow the first sweep.
-  Pattern previous = active_set<dim>().pattern(), solved;
+  Pattern &previous = kept.previous, &solved = kept.solved;
+  previous = active_set<dim>().pattern();
+  solved.clear();
   int repeats = 0, since_exact = 0;
   const auto exact_step_due = [&] {
     if (!exact) return false;
@@ -264,7 +279,8 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
     return repeats >= 1 && (previous != solved || since_exact >= tuning::exact_step_interval) &&
            s.exact_solves < tuning::max_exact_steps && it.exact_step_pays(active_set<dim>());
   };
-  AndersonMixing anderson(gauss_seidel ? params_.anderson : 0);
+  AndersonMixing& anderson = kept.anderson;
+  anderson.restart(gauss_seidel ? params_.anderson : 0);
   for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
     it.sweep();
     if (it.converged_after_sweep()) break;

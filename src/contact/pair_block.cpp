@@ -21,9 +21,9 @@ double largest_eigenvalue(const Eigen::Matrix3d& S) {
 }
 
 template <int dim>
-std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) {
+void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<dim>>& blocks) {
   using Mat = typename PairBlock<dim>::Mat;
-  std::vector<PairBlock<dim>> blocks;
+  blocks.clear();
   blocks.reserve(pb.size());
   const double scale = pb.W0->diagonal_scale();
   for (int i = 0; i < pb.size(); ++i) {
@@ -58,7 +58,6 @@ std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) 
     }
     blocks.push_back(b);
   }
-  return blocks;
 }
 
 namespace {
@@ -152,8 +151,8 @@ void verify_pass(const ContactProblem& pb, const std::vector<PairBlock<dim>>& bl
   }
 }
 
-template std::vector<PairBlock<2>> make_blocks<2>(const ContactProblem&, RhoRule);
-template std::vector<PairBlock<3>> make_blocks<3>(const ContactProblem&, RhoRule);
+template void make_blocks<2>(const ContactProblem&, RhoRule, std::vector<PairBlock<2>>&);
+template void make_blocks<3>(const ContactProblem&, RhoRule, std::vector<PairBlock<3>>&);
 template Status iterate_pair<2>(const PairBlock<2>&, const Eigen::Vector2d&, Eigen::Vector2d&, int, double, double,
                                 double);
 template Status iterate_pair<3>(const PairBlock<3>&, const Eigen::Vector3d&, Eigen::Vector3d&, int, double, double,

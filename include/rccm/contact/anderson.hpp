@@ -27,6 +27,13 @@ class AndersonMixing {
     qr_.setThreshold(1e-10);
   }
 
+  /// A new fixed-point iteration: the history forgotten (its memory kept), `depth` differences.
+  void restart(int depth) {
+    depth_ = depth;
+    count_ = next_ = 0;
+    has_previous_ = false;
+  }
+
   /// A sweep took y_in to (y, u = W0 y + q0): replaces (y, u) by the extrapolated iterate.
   /// Returns the combination's weight sum |gamma_k| (0: no extrapolation): the mixed u
   /// carries the round-off of the sweeps' u's times about this much (a nearly singular

@@ -11,7 +11,9 @@
 #pragma once
 
 #include "rccm/contact/active_set.hpp"
+#include "rccm/contact/anderson.hpp"
 #include "rccm/contact/contact_solver.hpp"
+#include "rccm/contact/pair_block.hpp"
 
 namespace rccm {
 
@@ -40,6 +42,20 @@ class BipotentialSolver final : public ContactSolver {
   ActiveSetSystem<3> active_set_3d_;
   template <int dim>
   ActiveSetSystem<dim>& active_set();
+  // The vectors a solve fills, kept from one solve to the next for their memory only (every
+  // solve sets them afresh): allocating them was a third of a cold solve of a few pairs.
+  template <int dim>
+  struct Buffers {
+    std::vector<PairBlock<dim>> blocks;
+    Eigen::VectorXd E, R_projected, Rbar_in, y_in;
+    Verification check;
+    Pattern pattern, tried, previous, solved;
+    AndersonMixing anderson{0};
+  };
+  Buffers<2> buffers_2d_;
+  Buffers<3> buffers_3d_;
+  template <int dim>
+  Buffers<dim>& buffers();
 };
 
 }  // namespace rccm

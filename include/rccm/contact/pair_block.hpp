@@ -42,9 +42,16 @@ struct PairBlock {
   Vec predictor(const Vec& R, const Vec& u_i) const { return R - rho * modified_velocity(u_i + shift, mubar); }
 };
 
-/// Every pair's block. Throws SolveError naming the pair that has no stiffness left.
+/// Every pair's block, into `blocks` (its memory reused). Throws SolveError naming the pair
+/// that has no stiffness left.
 template <int dim>
-std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule);
+void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<dim>>& blocks);
+template <int dim>
+std::vector<PairBlock<dim>> make_blocks(const ContactProblem& pb, RhoRule rule) {
+  std::vector<PairBlock<dim>> blocks;
+  make_blocks(pb, rule, blocks);
+  return blocks;
+}
 
 /// Pair i's local problem with the other pairs held (docs/MODEL.md s5): find Rbar_i with
 /// u_i = Wb Rbar_i + c and Rbar_i = proj(Rbar_i - rho s(u_i), K_mubar).
