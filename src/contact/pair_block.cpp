@@ -26,9 +26,14 @@ void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<d
   blocks.clear();
   blocks.reserve(pb.size());
   const double scale = pb.W0->diagonal_scale();
+  const Eigen::MatrixXd* W = pb.W0->dense();
   for (int i = 0; i < pb.size(); ++i) {
     PairBlock<dim> b;  // default-initialized: every member is set below
-    b.Wii = pb.W0->block(pb.layout.offset(i), dim);
+    const Eigen::Index first = pb.layout.offset(i);
+    if (W != nullptr)  // read in place: a copy through block()'s run-time sized matrix was a third of a pair's set-up
+      b.Wii = W->template block<dim, dim>(first, first);
+    else
+      b.Wii = pb.W0->block(first, dim);
     b.E = pair<dim>(pb.Dref, i) - pair<dim>(pb.Dbeta, i);
     b.shift = -pair<dim>(pb.u_ref, i);
     b.shift[dim - 1] = pb.g0[i];
