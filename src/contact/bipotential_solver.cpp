@@ -59,8 +59,7 @@ class BipotentialSolver::Iteration {
     s.status.assign(pb.size(), Status::Separated);
     for (int i = 0; i < pb.size(); ++i)
       if (blocks_[i].prescribed) pair<dim>(s.Rbar, i).setZero(), pair<dim>(s.y, i).setZero();
-    s.u = Eigen::VectorXd::Zero(m);
-    if (pb.W0->single_precision_sweeps()) correction_ = Eigen::VectorXd::Zero(m);
+    s.u.resize(m);
     refresh();
     s.Rbar = s.y - E_.cwiseProduct(s.u);
     R_projected_.setZero(m);
@@ -111,13 +110,11 @@ class BipotentialSolver::Iteration {
   /// tuning::refresh_interval sweeps (Jacobi: every sweep); in between, Gauss-Seidel's
   /// incremental u differs from it by the round-off of fewer sweeps, far below the tolerance,
   /// so convergence is judged on it without another product (a tenth of a 3D solve), unless
-  /// extrapolations with large weights may have amplified that round-off (mixed_u_weight) or
-  /// the sweeps updated u to single precision only (a compressed W0): then on a fresh u.
+  /// extrapolations with large weights may have amplified that round-off (mixed_u_weight).
   bool converged_after_sweep() {
-    const bool fresh = params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0;
-    if (fresh) refresh();
+    if (params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0) refresh();
     if (!criteria_hold()) return false;
-    if (u_weight_ > tuning::mixed_u_weight || (pb_.W0->single_precision_sweeps() && !fresh)) {
+    if (u_weight_ > tuning::mixed_u_weight) {
       refresh();
       if (!criteria_hold()) return false;
     }
@@ -149,7 +146,6 @@ class BipotentialSolver::Iteration {
 
   /// Anderson's extrapolation after the sweep (anderson.hpp); Rbar follows.
   void accelerate(AndersonMixing& anderson) {
-    if (correction_.size() > 0) anderson.correct_u(correction_), correction_.setZero();
     u_weight_ *= 1 + anderson.mix(y_in_, s.y, s.u);
     s.Rbar = s.y - E_.cwiseProduct(s.u);
   }
@@ -172,11 +168,8 @@ class BipotentialSolver::Iteration {
     return tuning::cancellation_floor * std::numeric_limits<double>::epsilon() * s.y.cwiseAbs().maxCoeff();
   }
   void refresh() {
-    const bool tracked = correction_.size() > 0;
-    if (tracked) correction_ -= s.u;
     pb_.W0->multiply(s.y, s.u);
     s.u += pb_.q0;
-    if (tracked) correction_ += s.u;
     u_weight_ = 1;
   }
   /// The verifying pass at `force` = force_level and `floor` = noise_floor() / tolerance.
@@ -207,7 +200,6 @@ class BipotentialSolver::Iteration {
   Verification& check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
   double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
-  Eigen::VectorXd correction_;  // single-precision sweeps: what products changed of their u since the last extrapolation
 };
 
 ContactSolution BipotentialSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,

@@ -24,9 +24,7 @@ void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eige
 CompressedDelassus::CompressedDelassus(HodlrMatrix W)
     : W_(std::move(W)),
       preconditioner_(W_.truncated(tuning::hodlr_preconditioner_accuracy)),
-      diagonal_scale_(W_.diagonal_scale()) {
-  W_.prepare_sweeps();
-}
+      diagonal_scale_(W_.diagonal_scale()) {}
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
   u = W_.multiply(y);

@@ -17,9 +17,6 @@ struct HodlrMatrix::Node {
   Eigen::MatrixXd dense;                  // a leaf's block
   std::unique_ptr<Node> first, second;    // the halves of a bisection
   Eigen::MatrixXd U12, V12, U21, V21;     // A(first, second) = U12 V12^T, A(second, first) = U21 V21^T
-  // The same factors in single precision, the V's transposed, for the Gauss-Seidel passes
-  // (HodlrMatrix::prepare_sweeps): their products stream half the bytes.
-  Eigen::MatrixXf U12s, V12ts, U21s, V21ts;
   bool leaf() const { return !first; }
 };
 
@@ -160,32 +157,6 @@ Eigen::VectorXd multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const E
   return y;
 }
 
-/// y += A x for a single-precision A, four columns at a time: axpys the compiler vectorizes,
-/// the conversion to double included (a sweep streams A once: its bytes set the pace).
-void add_product(const Eigen::MatrixXf& A, const double* x, double* y) {
-  const Eigen::Index n = A.rows(), r = A.cols();
-  Eigen::Index j = 0;
-  for (; j + 4 <= r; j += 4) {
-    const float *a0 = A.col(j).data(), *a1 = A.col(j + 1).data(), *a2 = A.col(j + 2).data(), *a3 = A.col(j + 3).data();
-    const double x0 = x[j], x1 = x[j + 1], x2 = x[j + 2], x3 = x[j + 3];
-    for (Eigen::Index i = 0; i < n; ++i)
-      y[i] += double(a0[i]) * x0 + double(a1[i]) * x1 + double(a2[i]) * x2 + double(a3[i]) * x3;
-  }
-  for (; j < r; ++j) {
-    const float* a = A.col(j).data();
-    for (Eigen::Index i = 0; i < n; ++i) y[i] += double(a[i]) * x[j];
-  }
-}
-
-/// y += U (Vt dx), U and Vt single precision: an off-diagonal block's response to dx.
-void add_block_response(const Eigen::MatrixXf& U, const Eigen::MatrixXf& Vt, const Eigen::VectorXd& dx,
-                        Eigen::Ref<Eigen::VectorXd> y) {
-  if (U.cols() == 0) return;
-  Eigen::VectorXd t = Eigen::VectorXd::Zero(Vt.rows());
-  add_product(Vt, dx.data(), t.data());
-  add_product(U, t.data(), y.data());
-}
-
 void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void(Eigen::Index)>& visit,
                   const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index n = node.end - node.begin;
@@ -200,13 +171,12 @@ void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void
     return;
   }
   const HodlrMatrix::Node &a = *node.first, &b = *node.second;
-  const Eigen::Index n1 = a.end - a.begin, n2 = b.end - b.begin;
-  const Eigen::VectorXd x1 = x.segment(a.begin, n1);
+  const Eigen::VectorXd x1 = x.segment(a.begin, a.end - a.begin);
   gauss_seidel(a, g, visit, x, y);
-  add_block_response(node.U21s, node.V21ts, x.segment(a.begin, n1) - x1, y.segment(b.begin, n2));
-  const Eigen::VectorXd x2 = x.segment(b.begin, n2);
+  y.segment(b.begin, b.end - b.begin) += node.U21 * (node.V21.transpose() * (x.segment(a.begin, a.end - a.begin) - x1));
+  const Eigen::VectorXd x2 = x.segment(b.begin, b.end - b.begin);
   gauss_seidel(b, g, visit, x, y);
-  add_block_response(node.U12s, node.V12ts, x.segment(b.begin, n2) - x2, y.segment(a.begin, n1));
+  y.segment(a.begin, a.end - a.begin) += node.U12 * (node.V12.transpose() * (x.segment(b.begin, b.end - b.begin) - x2));
 }
 
 /// Rows [begin, begin + M.rows()) of blockdiag(C) M, C's blocks g x g side by side.
@@ -375,17 +345,8 @@ HodlrMatrix& HodlrMatrix::operator=(HodlrMatrix&&) noexcept = default;
 
 Eigen::VectorXd HodlrMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const { return rccm::multiply(*root_, x); }
 
-void HodlrMatrix::prepare_sweeps() {
-  visit(*root_, [](Node& n) {
-    n.U12s = n.U12.cast<float>(), n.V12ts = n.V12.transpose().cast<float>();
-    n.U21s = n.U21.cast<float>(), n.V21ts = n.V21.transpose().cast<float>();
-  });
-  sweeps_prepared_ = true;
-}
-
 void HodlrMatrix::gauss_seidel(const std::function<void(Eigen::Index)>& visit, const Eigen::VectorXd& x,
                                Eigen::VectorXd& y) const {
-  RCCM_VERIFY(sweeps_prepared_, "gauss_seidel(): prepare_sweeps() first");
   rccm::gauss_seidel(*root_, granule_, visit, x, y);
 }
 

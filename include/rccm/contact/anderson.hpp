@@ -40,13 +40,6 @@ class AndersonMixing {
   /// least-squares problem gives large weights).
   double mix(const Eigen::VectorXd& y_in, Eigen::VectorXd& y, Eigen::VectorXd& u);
 
-  /// u was replaced by a fresh product, `correction` from the sweeps' incremental u: the last
-  /// sweep's u is corrected alike, so that the next difference of u is that of the fresh u's
-  /// (single-precision sweeps: their round-off would otherwise enter the combination).
-  void correct_u(const Eigen::VectorXd& correction) {
-    if (has_previous_) u_previous_ += correction;
-  }
-
  private:
   int depth_;
   int count_ = 0, next_ = 0;  // columns held, and the one to overwrite next

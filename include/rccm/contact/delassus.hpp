@@ -34,9 +34,6 @@ class DelassusOperator {
   /// throws, u is left behind y: the caller discards both.
   virtual void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                             Eigen::VectorXd& u) const;
-  /// Whether gauss_seidel updates u to single precision only (a relative error of about 1e-7
-  /// of the pass's response): a converged u is then confirmed by a product.
-  virtual bool single_precision_sweeps() const { return false; }
 
   /// The diagonal block W0 (first.., first..) of one pair, of size n.
   virtual LocalMatrix block(Eigen::Index first, int n) const = 0;
@@ -113,9 +110,8 @@ class DenseDelassus final : public DelassusOperator {
 
 /// W0 known only compressed (la/hodlr.hpp), never formed: memory, products and Gauss-Seidel
 /// passes about m r log m instead of m^2 (the off-diagonal blocks' rank r is 15-20 on an
-/// interface line), to an accuracy of tuning::hodlr_accuracy relative to its diagonal; the
-/// passes read single-precision copies of the blocks. The large-interface default
-/// (solver.compressed_min_nodes); the pairs' blocks are the leaves'.
+/// interface line), to an accuracy of tuning::hodlr_accuracy relative to its diagonal. The
+/// large-interface default (solver.compressed_min_nodes); the pairs' blocks are the leaves'.
 class CompressedDelassus final : public DelassusOperator {
  public:
   explicit CompressedDelassus(HodlrMatrix W);
@@ -126,7 +122,6 @@ class CompressedDelassus final : public DelassusOperator {
   /// By the hierarchy: the leaves' columns, then each bisection's blocks once.
   void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                     Eigen::VectorXd& u) const override;
-  bool single_precision_sweeps() const override { return true; }
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
   const HodlrMatrix* compressed() const override { return &W_; }

@@ -46,16 +46,10 @@ class HodlrMatrix {
                   const std::vector<Eigen::Index>& granules);
   /// y = A x.
   Eigen::VectorXd multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
-  /// Keeps single-precision copies of the off-diagonal blocks' factors for gauss_seidel
-  /// (half the doubles' memory again): a pass streams every block once, and its pace is
-  /// set by the bytes it reads.
-  void prepare_sweeps();
   /// A Gauss-Seidel pass in the order of the granules: visit(first) changes x's granule at
   /// `first` (reading y's), and y keeps up with it: on entry to each visit y holds
-  /// A x + (y - A x at the pass's start) on that granule, and after the pass everywhere, the
-  /// off-diagonal blocks' share of that to single precision (about 1e-7 of their response to
-  /// the pass's changes of x; multiply() is exact to double precision). Costs m r log m per
-  /// pass (the leaves' columns, then each bisection's blocks once). After prepare_sweeps().
+  /// A x + (y - A x at the pass's start) on that granule, and after the pass everywhere.
+  /// Costs m r log m per pass (the leaves' columns, then each bisection's blocks once).
   void gauss_seidel(const std::function<void(Eigen::Index first)>& visit, const Eigen::VectorXd& x,
                     Eigen::VectorXd& y) const;
   /// The diagonal block A(first .. first + n - 1, same), within one leaf (a granule's block).
@@ -66,7 +60,7 @@ class HodlrMatrix {
   /// largest diagonal entry (an SVD of its factors' small core; no products): lower ranks,
   /// for a factorization that refinement with this matrix corrects.
   HodlrMatrix truncated(double relative_tolerance) const;
-  /// The largest rank of an off-diagonal block, and the doubles stored (not the sweeps' copies).
+  /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
   Eigen::Index stored() const;
 
@@ -78,7 +72,6 @@ class HodlrMatrix {
   std::unique_ptr<Node> root_;
   Eigen::Index size_ = 0;
   int granule_ = 1;
-  bool sweeps_prepared_ = false;
 };
 
 /// The factorization of a HodlrMatrix: dense LU at the leaves, and at each bisection the
