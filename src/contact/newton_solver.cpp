@@ -176,7 +176,7 @@ class NewtonSolver::Iteration {
   /// A projected Gauss-Seidel sweep: pair by pair, the bipotential solver's local solve
   /// (pair_block.hpp) with the other pairs held, u updated at once.
   void sweep() {
-    const double F_old = std::max(s.Rbar.cwiseAbs().maxCoeff(), pb_.Dbeta.cwiseProduct(s.u).cwiseAbs().maxCoeff());
+    const double F_old = force_level(pb_, s.Rbar, s.u);
     gauss_seidel_pass<dim>(*pb_.W0, [&](int i) {
       const PairBlock<dim>& b = blocks_[i];
       if (b.prescribed) return;
