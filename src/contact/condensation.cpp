@@ -2,6 +2,10 @@
 
 #include "rccm/contact/solver_tuning.hpp"
 
+#include "rccm/base/errors.hpp"
+
+#include <Eigen/LU>
+
 namespace rccm {
 
 namespace {
@@ -45,7 +49,45 @@ Eigen::VectorXd Condensation::q0(double t) const { return Q_ * amplitudes(t); }
 
 Eigen::VectorXd Condensation::displacement(double t, const Eigen::VectorXd& y) const {
   const Eigen::Index ndof = interface_.P.cols();
-  return body_.solve(interface_.P.transpose() * y, Eigen::MatrixXd::Zero(ndof, 1)) + U_ * amplitudes(t);
+  return body_.solve(interface_.P.transpose() * body_force(t, y), Eigen::MatrixXd::Zero(ndof, 1)) + U_ * amplitudes(t);
+}
+
+Eigen::VectorXd Condensation::body_force(double t, const Eigen::VectorXd& y) const {
+  if (shift_.size() == 0) return y;
+  Eigen::VectorXd u(y.size());
+  W0_->multiply(y, u);
+  return y + shift_.cwiseProduct(u + q0(t));  // y_K0 = Rbar + E_K0 u = y + (Dref_K0 - Dref) u
+}
+
+void Condensation::change_springs(const Eigen::VectorXd& dD) {
+  const Eigen::Index m = W0_->size();
+  RCCM_VERIFY(dD.size() == m, "change_springs(): one spring change per interface component");
+  std::vector<Eigen::Index> S;
+  for (Eigen::Index c = 0; c < m; ++c)
+    if (dD[c] != 0) S.push_back(c);
+  if (S.empty()) return;
+  const Eigen::Index s = static_cast<Eigen::Index>(S.size());
+  Eigen::MatrixXd unit = Eigen::MatrixXd::Zero(m, s);
+  for (Eigen::Index k = 0; k < s; ++k) unit(S[k], k) = 1;
+  const Eigen::MatrixXd A = W0_->compressed() ? W0_->compressed()->multiply_block(unit) : *W0_->dense() * unit;
+  Eigen::MatrixXd I_dW = Eigen::MatrixXd::Identity(s, s), dD_S = Eigen::MatrixXd::Zero(s, s), Q_S(s, Q_.cols());
+  for (Eigen::Index k = 0; k < s; ++k) {
+    dD_S(k, k) = dD[S[k]];
+    I_dW.row(k) -= dD[S[k]] * A.row(S[k]);  // I - dD_S W0(S, S)
+    Q_S.row(k) = Q_.row(S[k]);
+  }
+  Eigen::MatrixXd G = I_dW.partialPivLu().solve(dD_S);
+  G = 0.5 * (G + G.transpose()).eval();  // symmetric but for round-off
+  const Eigen::MatrixXd AG = A * G;
+  Q_ += AG * Q_S;
+  if (const Eigen::MatrixXd* W = W0_->dense()) {
+    Eigen::MatrixXd Wc = *W + AG * A.transpose();
+    W0_ = std::make_unique<DenseDelassus>(0.5 * (Wc + Wc.transpose()));
+  } else {
+    W0_ = std::make_unique<CompressedDelassus>(W0_->compressed()->plus(AG, A, tuning::hodlr_accuracy));
+  }
+  if (shift_.size() == 0) shift_ = Eigen::VectorXd::Zero(m);
+  shift_ += dD;
 }
 
 Condensation::Forms Condensation::forms(const Eigen::MatrixXd& L) const {

@@ -148,13 +148,33 @@ void subtract_coarse(const HodlrMatrix::Node& node, int depth, const Eigen::Matr
   subtract_coarse(b, depth - 1, X, Y);
 }
 
-Eigen::VectorXd multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const Eigen::VectorXd>& x) {
+/// A x for a vector or a block of columns x (Columns: Eigen::VectorXd or Eigen::MatrixXd).
+template <class Columns>
+Columns multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const Columns>& x) {
   if (node.leaf()) return node.dense * x;
   const Eigen::Index n1 = node.first->end - node.first->begin, n2 = node.end - node.begin - n1;
-  Eigen::VectorXd y(x.size());
-  y.head(n1) = multiply(*node.first, x.head(n1)) + node.U12 * (node.V12.transpose() * x.tail(n2));
-  y.tail(n2) = multiply(*node.second, x.tail(n2)) + node.U21 * (node.V21.transpose() * x.head(n1));
+  Columns y(x.rows(), x.cols());
+  y.topRows(n1) = multiply<Columns>(*node.first, x.topRows(n1)) + node.U12 * (node.V12.transpose() * x.bottomRows(n2));
+  y.bottomRows(n2) = multiply<Columns>(*node.second, x.bottomRows(n2)) + node.U21 * (node.V21.transpose() * x.topRows(n1));
   return y;
+}
+
+/// U V^T recompressed to Ut Vt within `tolerance`: U = Q R, then the SVD of the small factor
+/// V R^T truncates it (truncate). U may have more columns than rows.
+void recompress(const Eigen::MatrixXd& U, const Eigen::MatrixXd& V, double tolerance, Eigen::MatrixXd& Ut,
+                Eigen::MatrixXd& Vt) {
+  const Eigen::HouseholderQR<Eigen::MatrixXd> qr(U);
+  const Eigen::Index k = std::min(U.rows(), U.cols());
+  const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(U.rows(), k);
+  const Eigen::MatrixXd R = qr.matrixQR().topRows(k).triangularView<Eigen::Upper>();
+  truncate(Q, V * R.transpose(), tolerance, Ut, Vt);
+}
+
+/// [A B] side by side (B's rows of A's count).
+Eigen::MatrixXd beside(const Eigen::MatrixXd& A, const Eigen::Ref<const Eigen::MatrixXd>& B) {
+  Eigen::MatrixXd out(A.rows(), A.cols() + B.cols());
+  out << A, B;
+  return out;
 }
 
 void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void(Eigen::Index)>& visit,
@@ -343,7 +363,13 @@ HodlrMatrix::~HodlrMatrix() = default;
 HodlrMatrix::HodlrMatrix(HodlrMatrix&&) noexcept = default;
 HodlrMatrix& HodlrMatrix::operator=(HodlrMatrix&&) noexcept = default;
 
-Eigen::VectorXd HodlrMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const { return rccm::multiply(*root_, x); }
+Eigen::VectorXd HodlrMatrix::multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const {
+  return rccm::multiply<Eigen::VectorXd>(*root_, x);
+}
+
+Eigen::MatrixXd HodlrMatrix::multiply_block(const Eigen::Ref<const Eigen::MatrixXd>& X) const {
+  return rccm::multiply<Eigen::MatrixXd>(*root_, X);
+}
 
 void HodlrMatrix::gauss_seidel(const std::function<void(Eigen::Index)>& visit, const Eigen::VectorXd& x,
                                Eigen::VectorXd& y) const {
@@ -366,26 +392,26 @@ void HodlrMatrix::remix_rows(const HodlrMatrix& A, const Eigen::MatrixXd& Cw, co
 }
 
 HodlrMatrix HodlrMatrix::truncated(double relative_tolerance) const {
+  return plus(Eigen::MatrixXd(size_, 0), Eigen::MatrixXd(size_, 0), relative_tolerance);
+}
+
+HodlrMatrix HodlrMatrix::plus(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y, double relative_tolerance) const {
+  RCCM_VERIFY(X.rows() == size_ && Y.rows() == size_ && X.cols() == Y.cols(), "plus(): X Y^T of another shape");
   const double tolerance = relative_tolerance * diagonal_scale();
-  // U V^T = Q (V R^T)^T with U = Q R: the SVD of the small factor V R^T truncates it (truncate).
-  const auto recompress = [&](const Eigen::MatrixXd& U, const Eigen::MatrixXd& V, Eigen::MatrixXd& Ut, Eigen::MatrixXd& Vt) {
-    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(U);
-    const Eigen::Index r = U.cols();
-    const Eigen::MatrixXd Q = qr.householderQ() * Eigen::MatrixXd::Identity(U.rows(), r);
-    const Eigen::MatrixXd R = qr.matrixQR().topRows(r).triangularView<Eigen::Upper>();
-    truncate(Q, V * R.transpose(), tolerance, Ut, Vt);
-  };
   const std::function<std::unique_ptr<Node>(const Node&)> copy = [&](const Node& a) {
     auto n = std::make_unique<Node>();
     n->begin = a.begin, n->end = a.end;
     if (a.leaf()) {
+      const Eigen::Index rows = a.end - a.begin;
       n->dense = a.dense;
+      if (X.cols() > 0) n->dense.noalias() += X.middleRows(a.begin, rows) * Y.middleRows(a.begin, rows).transpose();
       return n;
     }
     n->first = copy(*a.first);
     n->second = copy(*a.second);
-    recompress(a.U12, a.V12, n->U12, n->V12);
-    recompress(a.U21, a.V21, n->U21, n->V21);
+    const Eigen::Index b1 = a.first->begin, n1 = a.first->end - b1, b2 = a.second->begin, n2 = a.end - b2;
+    recompress(beside(a.U12, X.middleRows(b1, n1)), beside(a.V12, Y.middleRows(b2, n2)), tolerance, n->U12, n->V12);
+    recompress(beside(a.U21, X.middleRows(b2, n2)), beside(a.V21, Y.middleRows(b1, n1)), tolerance, n->U21, n->V21);
     return n;
   };
   HodlrMatrix out;

@@ -42,7 +42,7 @@ BodyForms::BodyForms(const Condensation& condensation, const SparseMatrix& K, co
 
 BodyResultants BodyForms::evaluate(double t, const Eigen::VectorXd& y, const Eigen::VectorXd& r) const {
   const Eigen::VectorXd a = condensation_.amplitudes(t);
-  const Eigen::VectorXd v = g_.transpose() * y + h_.transpose() * a - c_.transpose() * r;
+  const Eigen::VectorXd v = g_.transpose() * condensation_.body_force(t, y) + h_.transpose() * a - c_.transpose() * r;
   BodyResultants b;
   b.work = {a, Eigen::VectorXd(loads_), Eigen::VectorXd(loads_)};
   for (int k = 0; k < loads_; ++k) {

@@ -212,17 +212,31 @@ double springs_weight(double beta) { return std::max(beta * beta, tuning::spring
 
 void Model::condense(const Eigen::VectorXd& beta) {
   RCCM_VERIFY(beta.size() == interface_.size(), "one beta per contact pair");
-  springs_beta_ = beta;
   const Eigen::VectorXd w = beta.unaryExpr(&springs_weight);
-  forms_.reset();  // each refers to the one before it replaces (and all to the memory of the new ones)
-  condensation_.reset();
-  body_.reset();
-  body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
-  condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress_W0_);
-  forms_ = std::make_unique<BodyForms>(*condensation_, K_, interface_, loads_, free_, mesh_, probes_);
-  Dref_ = D1_;
   const Layout& L = interface_.layout;
-  for (int i = 0; i < interface_.size(); ++i) L.local(Dref_, i) *= w[i];
+  Eigen::VectorXd Dref = D1_;
+  for (int i = 0; i < interface_.size(); ++i) L.local(Dref, i) *= w[i];
+  Eigen::Index changed = 0;
+  for (Eigen::Index c = 0; c < Dref.size() && condensation_; ++c) changed += Dref[c] != Dref_[c];
+  if (condensation_ && changed <= tuning::springs_woodbury_fraction * Dref.size()) {
+    condensation_->change_springs(Dref_ - Dref);  // a few pairs: K0 and the body forms stay
+  } else {
+    forms_.reset();  // each refers to the one before it replaces (and all to the memory of the new ones)
+    condensation_.reset();
+    body_.reset();
+    body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
+    condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress_W0_);
+    forms_ = std::make_unique<BodyForms>(*condensation_, K_, interface_, loads_, free_, mesh_, probes_);
+  }
+  springs_beta_ = beta;
+  Dref_ = Dref;
+}
+
+Eigen::VectorXd Model::springs_following(const Eigen::VectorXd& beta) const {
+  Eigen::VectorXd out = springs_beta_;
+  for (int i = 0; i < interface_.size(); ++i)
+    if (springs_weight(beta[i]) * tuning::springs_follow_ratio < springs_weight(springs_beta_[i])) out[i] = beta[i];
+  return out;
 }
 
 bool Model::springs_lag(const Eigen::VectorXd& beta) const {

@@ -150,7 +150,7 @@ void BetaOde::accept(double t, Eigen::Ref<Eigen::VectorXd> beta) {
   committed_.commit(t, beta, s);
   ++step_;
   // Before the observer: the states it records are split for the K0 the run goes on with.
-  if (model_.springs_lag(committed_.beta)) condense(committed_.beta);  // docs/MODEL.md s4
+  if (model_.springs_lag(committed_.beta)) condense(model_.springs_following(committed_.beta));  // docs/MODEL.md s4
   const double clock = now();
   const AcceptedStep step{step_,       t, t - t_old, committed_, s, r, step_counts_, clock - step_start_,
                           with_midpoint ? &midpoint_ : nullptr};

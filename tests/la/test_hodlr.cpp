@@ -266,3 +266,33 @@ TEST_CASE("HODLR: truncated to a looser tolerance the ranks fall and the product
   CHECK(T.max_rank() == 1);
   CHECK((T.multiply(X.col(1)) - B * X.col(1)).norm() <= 1e-11 * (B * X.col(1)).norm());
 }
+
+TEST_CASE("HODLR: plus a low-rank matrix is the sum to the tolerance and takes the rank back when subtracted", "[hodlr]") {
+  // Condensation::change_springs adds A G A^T (the columns of a few pairs) to W0 this way.
+  const int m = 600;
+  const Eigen::MatrixXd A = 1e3 * kernel_matrix(m);
+  const HodlrMatrix H(A, 1e-13 * 3e3, 32, 2);
+  std::srand(11);
+  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(m, 7), Y = Eigen::MatrixXd::Random(m, 7);
+  const Eigen::MatrixXd B = A + 1e2 * X * Y.transpose();
+  const HodlrMatrix S = H.plus(1e2 * X, Y, 1e-13);
+  REQUIRE(S.size() == m);
+  CHECK(S.granule() == H.granule());
+  const Eigen::MatrixXd Z = Eigen::MatrixXd::Random(m, 3);
+  // Products of a block of columns, and of each alone, against the dense sum.
+  const Eigen::MatrixXd SZ = S.multiply_block(Z);
+  CHECK((SZ - B * Z).norm() <= 1e-11 * (B * Z).norm());
+  for (int k = 0; k < Z.cols(); ++k) CHECK((S.multiply(Z.col(k)) - SZ.col(k)).norm() <= 1e-14 * SZ.col(k).norm());
+  // The leaves took their share: the pairs' diagonal blocks are B's.
+  CHECK((S.diagonal_block(100, 2) - B.block(100, 100, 2, 2)).norm() <= 1e-12 * B.block(100, 100, 2, 2).norm());
+  // A generic rank-7 term raises every off-diagonal rank by up to 7; taken away, the
+  // recompression finds the ranks of A again (within a few of round-off's).
+  CHECK(S.max_rank() > H.max_rank());
+  CHECK(S.max_rank() <= H.max_rank() + 7);
+  const HodlrMatrix back = S.plus(-1e2 * X, Y, 1e-13);
+  CHECK(back.max_rank() <= H.max_rank() + 2);
+  CHECK((back.multiply_block(Z) - A * Z).norm() <= 1e-11 * (A * Z).norm());
+  // Solves with the sum agree with the dense ones.
+  const Eigen::MatrixXd sol = HodlrSolver(S).solve(Z);
+  CHECK((B * sol - Z).norm() <= 1e-9 * Z.norm());
+}

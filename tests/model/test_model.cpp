@@ -6,6 +6,7 @@
 #include "rccm/contact/newton_solver.hpp"
 #include "rccm/contact/solver_tuning.hpp"
 #include "rccm/fem/elasticity.hpp"
+#include "rccm/model/body_state.hpp"
 #include "rccm/model/interface_state.hpp"
 #include "rccm/fem/loads.hpp"
 #include "rccm/fem/mesh_source.hpp"
@@ -171,6 +172,105 @@ TEST_CASE("condensations at damaged betas with W0 compressed: W0 q0 and the body
     }
     CHECK((c.q0(1.0) - q0_direct).norm() <= 1e-10 * q0_direct.norm());
   }
+}
+
+TEST_CASE("springs changed on a few pairs by Woodbury's formula: W0 q0 the body and its forms equal direct solves", "[model]") {
+  // Model::condense when a few pairs' springs change: W0 and q0 follow by
+  // Condensation::change_springs (K0 kept), the body's displacement and the body forms through
+  // body_force; each against K0 with those springs solved directly. Dense and compressed W0,
+  // springs lowered twice in a row, then raised back on some of the pairs.
+  const std::string loads = R"({ node_set = "top"; type = "traction"; component = "y"; value = 2.0; },
+                               { node_set = "right"; type = "traction"; component = "x"; value = -1.0; })";
+  for (const bool compressed : {false, true}) {
+    INFO((compressed ? "compressed W0" : "dense W0"));
+    const Config cfg = test::config_from_text(
+        block_config("Q4", "mu = 0.3;", loads),
+        {"mesh.nx=99", std::string("solver.compressed_min_nodes=") + (compressed ? "16" : "1000")});
+    Model model = test::make_model(cfg);
+    const int n = model.contact_nodes();
+    REQUIRE(n == 100);
+    REQUIRE((model.condensation().W0().compressed() != nullptr) == compressed);
+    const Condensation* const first = &model.condensation();
+    const Eigen::MatrixXd P = model.interface().P;
+    Eigen::VectorXd F = Eigen::VectorXd::Zero(P.cols());
+    for (const LoadCase& lc : model.loads()) F += lc.amplitude(1.0) * lc.force;
+    std::mt19937 gen(7);
+    std::uniform_real_distribution<double> U(-1, 1);
+    const Eigen::MatrixXd Y = Eigen::MatrixXd::NullaryExpr(P.rows(), 3, [&]() { return U(gen); });
+    Eigen::VectorXd beta = Eigen::VectorXd::Ones(n);
+    for (int stage = 1; stage <= 3; ++stage) {
+      INFO("stage " << stage);
+      if (stage == 1) beta[10] = 0.0, beta[11] = 0.3, beta[50] = 0.5, beta[51] = 0.05;
+      if (stage == 2) beta[11] = 0.0, beta[70] = 0.2, beta[99] = 0.6;
+      if (stage == 3) beta[10] = 1.0, beta[70] = 0.9;  // stiffer again: dD < 0 on those
+      model.condense(beta);
+      REQUIRE(&model.condensation() == first);  // no new condensation: K0 kept
+      CHECK(model.springs_beta() == beta);
+      const Eigen::VectorXd w = beta.cwiseProduct(beta).cwiseMax(tuning::springs_floor);
+      const Eigen::MatrixXd K0 = Eigen::MatrixXd(model.stiffness() + model.interface().springs(w, w));
+      const Eigen::LDLT<Eigen::MatrixXd> direct(K0);
+      const Eigen::MatrixXd W_direct = P * direct.solve(P.transpose());
+      const Eigen::VectorXd q0_direct = P * direct.solve(F);
+      const Condensation& c = model.condensation();
+      CHECK((c.q0(1.0) - q0_direct).norm() <= 1e-10 * q0_direct.norm());
+      if (!compressed) {
+        const Eigen::MatrixXd& W0 = *c.W0().dense();
+        CHECK((W0 - W_direct).norm() <= 1e-11 * W_direct.norm());
+        CHECK(W0 == W0.transpose());
+      }
+      for (int k = 0; k < Y.cols(); ++k) {
+        Eigen::VectorXd Wy(P.rows());
+        c.W0().multiply(Y.col(k), Wy);
+        CHECK((Wy - W_direct * Y.col(k)).norm() <= 1e-10 * (W_direct * Y.col(k)).norm());
+        const Eigen::VectorXd u = c.displacement(1.0, Y.col(k));
+        const Eigen::VectorXd u_direct = direct.solve(P.transpose() * Y.col(k) + F);
+        CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
+      }
+      // The body forms (condensed with K0 at beta = 1) see the force of K0's splitting: the
+      // probes-free resultants of a step equal those of the full displacement.
+      InterfaceState s = InterfaceState::initial(model);
+      s.t = 1.0, s.beta = beta, s.y = Y.col(0);
+      c.W0().multiply(s.y, s.u);
+      s.u += c.q0(1.0);
+      s.Rbar = s.y - (model.contact_problem(1.0, beta, s.u).Dref - model.contact_problem(1.0, beta, s.u).Dbeta).cwiseProduct(s.u);
+      const BodyState full = body_state(model, s), forms = body_resultants(model, s);
+      REQUIRE(full.force.size() == 2);
+      for (std::size_t k = 0; k < full.force.size(); ++k) {
+        CHECK(forms.force[k] == Approx(full.force[k]).epsilon(1e-9).margin(1e-12));
+        CHECK(forms.displacement[k] == Approx(full.displacement[k]).epsilon(1e-9).margin(1e-12));
+      }
+      CHECK(forms.strain_energy == Approx(full.strain_energy).epsilon(1e-9));
+      CHECK(c.body_force(1.0, s.y) != s.y);  // K0's springs differ from W0's on the changed pairs
+    }
+    // Springs changed on every pair: K0 factorized with them, the body takes y as it is.
+    model.condense(Eigen::VectorXd::Constant(n, 0.5));
+    CHECK(model.condensation().body_force(1.0, Y.col(0)) == Y.col(0));
+  }
+}
+
+TEST_CASE("the springs follow beta on the pairs whose spring weighs more than twice its weight at beta", "[model]") {
+  const std::string loads = R"({ node_set = "top"; type = "traction"; component = "y"; value = 1.0; })";
+  Model model = test::make_model(test::config_from_text(block_config("Q4", "mu = 0.4;", loads),
+                                                        {"solver.springs_follow_beta=true"}));
+  const int n = model.contact_nodes();
+  Eigen::VectorXd beta = Eigen::VectorXd::Ones(n);
+  beta[0] = 0.0;   // weight 1e-2 (the floor) against 1: follows
+  beta[1] = 0.7;   // 0.49: follows
+  beta[2] = 0.71;  // 0.5041: more than half, stays
+  beta[3] = 0.9;   // stays
+  const Eigen::VectorXd s = model.springs_following(beta);
+  CHECK(s[0] == 0.0);
+  CHECK(s[1] == 0.7);
+  CHECK(s[2] == 1.0);
+  CHECK(s[3] == 1.0);
+  for (int i = 4; i < n; ++i) CHECK(s[i] == 1.0);
+  model.condense(s);
+  beta[1] = 0.4;  // 0.16 against 0.49 in W0: follows again
+  beta[0] = 0.0;
+  const Eigen::VectorXd t = model.springs_following(beta);
+  CHECK(t[1] == 0.4);
+  CHECK(t[0] == 0.0);  // at the floor already
+  CHECK(t[2] == 1.0);
 }
 
 TEST_CASE("the contact solution does not depend on the springs K0 holds (Model::condense)", "[model]") {

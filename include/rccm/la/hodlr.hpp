@@ -46,6 +46,8 @@ class HodlrMatrix {
                   const std::vector<Eigen::Index>& granules);
   /// y = A x.
   Eigen::VectorXd multiply(const Eigen::Ref<const Eigen::VectorXd>& x) const;
+  /// A X for a block of columns (a product of BLAS-3 speed).
+  Eigen::MatrixXd multiply_block(const Eigen::Ref<const Eigen::MatrixXd>& X) const;
   /// A Gauss-Seidel pass in the order of the granules: visit(first) changes x's granule at
   /// `first` (reading y's), and y keeps up with it: on entry to each visit y holds
   /// A x + (y - A x at the pass's start) on that granule, and after the pass everywhere.
@@ -60,6 +62,11 @@ class HodlrMatrix {
   /// largest diagonal entry (an SVD of its factors' small core; no products): lower ranks,
   /// for a factorization that refinement with this matrix corrects.
   HodlrMatrix truncated(double relative_tolerance) const;
+  /// This matrix plus X Y^T (X, Y with this size's rows): the leaves added to, each
+  /// off-diagonal block's factors extended by X's and Y's rows and recompressed as truncated()
+  /// does, no products: a change of low rank (W0 when a few pairs' springs change,
+  /// Condensation::change_springs) for about m (r + k)^2 log m, k = X's columns.
+  HodlrMatrix plus(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y, double relative_tolerance) const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
   Eigen::Index stored() const;

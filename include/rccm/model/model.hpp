@@ -61,17 +61,23 @@ class Model {
   /// (docs/MODEL.md s4). Its W0 points into this model.
   ContactProblem contact_problem(double t, const Eigen::VectorXd& beta, const Eigen::VectorXd& u_ref) const;
 
-  /// The beta of the adhesive springs K0 holds (docs/MODEL.md s4): ones at the start.
+  /// The beta of the adhesive springs W0 holds (docs/MODEL.md s4): ones at the start.
   const Eigen::VectorXd& springs_beta() const { return springs_beta_; }
-  /// K0 factorized again with the springs at `beta` (each at least tuning::springs_floor of
-  /// D(1)), and W0 and the load responses condensed anew. The contact problem's solution does
-  /// not change; its splitting y = Rbar + E u does, and with it the sweeps' rate: a pair that
-  /// has lost its adhesion is no longer held in W0 by a spring that E must take back. The body
-  /// forms are condensed anew with it.
+  /// W0 and the load responses with the springs at `beta` (each at least tuning::springs_floor
+  /// of D(1)): where they change on a few pairs (tuning::springs_woodbury_fraction), by
+  /// Woodbury's formula from the W0 before (Condensation::change_springs); otherwise K0
+  /// factorized again with them and everything condensed anew, the body forms too. The contact
+  /// problem's solution does not change; its splitting y = Rbar + E u does, and with it the
+  /// sweeps' rate: a pair that has lost its adhesion is no longer held in W0 by a spring that E
+  /// must take back.
   void condense(const Eigen::VectorXd& beta);
   /// Whether K0's springs lag `beta` enough for condense(beta) to pay (solver.springs_follow_beta):
   /// tuning::springs_lag_fraction of the pairs with a spring weaker than 1 / springs_lag_ratio of K0's.
   bool springs_lag(const Eigen::VectorXd& beta) const;
+  /// The springs' beta to condense at when they lag `beta`: beta where a pair's spring weighs
+  /// more than tuning::springs_follow_ratio times its weight at beta, springs_beta() elsewhere
+  /// (a change on few pairs: condense() by Woodbury's formula).
+  Eigen::VectorXd springs_following(const Eigen::VectorXd& beta) const;
 
   const SparseMatrix& stiffness() const { return K_; }  // bare K, all DOFs
   const std::vector<LoadCase>& loads() const { return loads_; }
@@ -104,7 +110,7 @@ class Model {
   LinearSolverParams linear_;
   std::vector<int> interface_dofs_;  // ordered last in K0's factor, for the dense W0
   Eigen::VectorXd springs_beta_;
-  Eigen::VectorXd D1_, Dref_, g0_;   // the springs at beta = 1 and those in K0
+  Eigen::VectorXd D1_, Dref_, g0_;   // the springs at beta = 1 and those in W0
   std::vector<int> watched_, probes_;
 };
 
