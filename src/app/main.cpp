@@ -34,7 +34,7 @@ void print_totals(const rccm::RunResult& r) {
               r.integrator.steps, r.integrator.rejected, r.solves.contact_solves, r.solves.sweeps_per_solve(),
               r.solves.max_sweeps, r.wall_seconds, r.setup_seconds, 1e6 * per_solve);
   if (r.solves.condensations > 0)
-    std::printf("# K0 condensed anew %ld times as beta fell (%.3f s of the wall time)\n", r.solves.condensations,
+    std::printf("# W0's springs followed beta %ld times (%.3f s of the wall time)\n", r.solves.condensations,
                 r.solves.condense_seconds);
   for (const std::string& w : r.warnings) std::cerr << "rccm: warning: " << w << "\n";
 }

@@ -82,7 +82,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << "  contact solves          " << r.solves.contact_solves << "\n"
       << "  contact iterations      " << fmt("%.2f", double(r.solves.sweeps) / std::max(1L, r.solves.contact_solves))
       << " per solve, max " << r.solves.max_sweeps << "\n"
-      << (cfg.solver.springs_follow_beta ? "  K0 condensed anew       " + std::to_string(r.solves.condensations) + " times (" +
+      << (cfg.solver.springs_follow_beta ? "  W0's springs followed   " + std::to_string(r.solves.condensations) + " times (" +
                                                fmt("%.3f", r.solves.condense_seconds) + " s; solver.springs_follow_beta)\n"
                                          : std::string())
       << "  wall time               " << fmt("%.3f", r.wall_seconds) << " s (setup " << fmt("%.4f", r.setup_seconds)

@@ -231,20 +231,23 @@ TEST_CASE("the energy terms are as accurate as beta: at the default tolerance th
   }
 }
 
-TEST_CASE("K0's springs following beta change no result of B1 or the 3D corner peel and save the peel's sweeps",
+TEST_CASE("W0's springs following beta change no result of B1 or the 3D corner peel and save the peel's sweeps",
           "[physics]") {
   // Only the splitting y = Rbar + E u changes (docs/MODEL.md s4): with the same time steps
-  // the runs agree to the contact solver's tolerance, however often K0 is condensed anew;
+  // the runs agree to the contact solver's tolerance, however often the springs follow beta;
   // ARKODE's own steps agree to its tolerance, and the energy balance (through the states
   // halfway through each step, split anew too) holds as well.
   struct Case {
     const char* file;
     std::vector<std::string> settings;
-    double tolerance;  // beta, and Rbar, u, energies relative to their largest value
+    double tolerance;       // Rbar, u, energies relative to their largest value
+    double beta_tolerance;
   };
-  const Case cases[] = {{"b1.cfg", {"integrator.method=\"euler\"", "time.steps=300"}, 1e-7},
-                        {"corner-peel.cfg", {"integrator.method=\"euler\"", "time.steps=1200"}, 1e-7},  // stable steps
-                        {"b1.cfg", {}, 1e-4}};
+  // With ARKODE the two runs take other steps, and agree to its error: on B1 at T each is
+  // 1.4e-5 to 2.9e-5 off a run at rtol 1e-9 (2026-11-29), hence 3e-5.
+  const Case cases[] = {{"b1.cfg", {"integrator.method=\"euler\"", "time.steps=300"}, 1e-7, 1e-8},
+                        {"corner-peel.cfg", {"integrator.method=\"euler\"", "time.steps=1200"}, 1e-7, 1e-8},  // stable steps
+                        {"b1.cfg", {}, 1e-4, 3e-5}};
   for (const Case& c : cases) {
     INFO(c.file << (c.settings.empty() ? " with ARKODE" : " with Euler"));
     std::vector<std::string> on = c.settings, off = c.settings;
@@ -256,7 +259,7 @@ TEST_CASE("K0's springs following beta change no result of B1 or the 3D corner p
     REQUIRE(a.result.snapshots.size() == b.result.snapshots.size());
     for (std::size_t k = 0; k < a.result.snapshots.size(); ++k) {
       const Snapshot &x = a.result.snapshots[k], &y = b.result.snapshots[k];
-      CHECK((x.beta - y.beta).cwiseAbs().maxCoeff() <= 0.1 * c.tolerance);
+      CHECK((x.beta - y.beta).cwiseAbs().maxCoeff() <= c.beta_tolerance);
       CHECK((x.Rbar - y.Rbar).cwiseAbs().maxCoeff() <= c.tolerance * x.Rbar.cwiseAbs().maxCoeff());
       CHECK((x.u - y.u).cwiseAbs().maxCoeff() <= c.tolerance * x.u.cwiseAbs().maxCoeff());
     }

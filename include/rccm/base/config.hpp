@@ -146,7 +146,7 @@ struct SolverParams {
   bool active_set = true;        // the exact step: solve the linear problem of a status pattern (default: 2D only)
   int active_set_max_nodes = 4096;  // beyond, on a dense W0: sweeps only (the exact step keeps two dense (2n)^2 matrices: 32 n^2 bytes)
   int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, 2D newton)
-  bool springs_follow_beta = false;  // K0 factorized and W0 condensed anew when its springs lag beta (default: 3D only; docs/MODEL.md s4)
+  bool springs_follow_beta = false;  // W0's springs follow beta where they lag it (default: 3D only; docs/MODEL.md s4)
   LinearSolverParams linear;        // the body's K0 solves (setup: W0, load responses; body state at output)
   /// Whether the contact solver works on a compressed W0 (bipotential; Newton in 2D): where
   /// compressed_min_nodes applies.

@@ -49,8 +49,8 @@ constexpr double prescribed_pair = 1e-14;
 /// in u = W0 y + q0 (~1 / floor): at 1e-3 a block pressed onto a debonded base no longer
 /// reached the tolerance 1e-10.
 constexpr double springs_floor = 1e-2;
-/// A pair's spring lags when beta^2 (floored) fell below 1 / this of its weight in K0; K0 is
-/// factorized and W0 condensed anew once this fraction of the pairs lag. The whole 625-node
+/// A pair's spring lags when beta^2 (floored) fell below 1 / this of its weight in W0; W0's
+/// springs follow beta once this fraction of the pairs lag. The whole 625-node
 /// peel (docs/PERFORMANCE.md): fractions 0.05 / 0.02 / 0.01 / 0.005 / 0.0025 condensed 1 / 3 /
 /// 6 / 15 / 31 times for 12.0 / 8.2 / 6.8 / 5.8 / 5.3 sweeps per solve (13.6 never): 0.01 was fastest.
 constexpr double springs_lag_ratio = 10;

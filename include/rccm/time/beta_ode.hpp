@@ -26,7 +26,7 @@ struct SolveCounts {
   long sweeps = 0;
   int max_sweeps = 0;
   double seconds = 0;  // wall time inside the contact solves (problem set-up and solver)
-  long condensations = 0;       // K0 factorized and W0 condensed anew (solver.springs_follow_beta)
+  long condensations = 0;       // W0's springs set anew (Model::condense; solver.springs_follow_beta)
   double condense_seconds = 0;  // wall time of those
   void add(const ContactSolution& s, double solve_seconds);
   double sweeps_per_solve() const { return double(sweeps) / double(std::max(1L, contact_solves)); }
@@ -48,7 +48,7 @@ class BetaOde final : public BetaSystem {
  public:
   using Observer = std::function<void(const AcceptedStep&)>;
 
-  /// `model` is condensed anew (Model::condense) after an accepted step where its springs lag beta.
+  /// `model`'s W0 springs follow beta (Model::condense) after an accepted step where they lag it.
   BetaOde(Model& model, std::unique_ptr<ContactSolver> solver, Observer observer = {});
 
   int size() const override { return model_.contact_nodes(); }
