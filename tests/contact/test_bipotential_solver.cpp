@@ -219,6 +219,38 @@ TEST_CASE("a single free node is solved exactly in each regime", "[solver]") {
   }
 }
 
+TEST_CASE("a cold solve that one sweep solves stops after it: uncoupled pairs in every regime", "[solver]") {
+  // W block-diagonal (each pair alone): one Gauss-Seidel sweep solves each pair exactly. From
+  // nothing, the first sweep's change of Rbar is the whole solution and says nothing; the
+  // verifying pass after it finds the residual below the tolerance, and no second sweep runs
+  // (Siconos' NSGS stops after one iteration alike).
+  Eigen::MatrixXd Wd = Eigen::MatrixXd::Zero(8, 8);
+  for (int i = 0; i < 4; ++i) Wd.block<2, 2>(2 * i, 2 * i) << 1.0 + 0.1 * i, 0.2, 0.2, 2.0 - 0.1 * i;
+  const DenseDelassus W(Wd);
+  ContactProblem pb;
+  pb.W0 = &W;
+  pb.mubar = Eigen::VectorXd::Constant(4, 0.5);
+  pb.g0 = Eigen::VectorXd::Zero(4);
+  pb.u_ref = pb.Dref = pb.Dbeta = Eigen::VectorXd::Zero(8);
+  pb.q0.resize(8);
+  pb.q0 << 0.3, 1.0,   // opening
+      0.1, -1.0,       // pressed, small shear: stick
+      3.0, -1.0,       // pressed, large shear: slide
+      -2.5, -0.5;      // slide the other way
+  for (const bool active_set : {false, true}) {
+    INFO("active_set " << active_set);
+    const ContactSolution s = BipotentialSolver(params(SweepForm::GaussSeidel, active_set)).solve(pb, {}, {});
+    REQUIRE(s.converged);
+    CHECK(s.iterations == 1);
+    CHECK(s.residual <= 1e-10);
+    CHECK(residuals(pb, s).max() <= 1e-10);
+    CHECK(s.status[0] == Status::Separated);
+    CHECK(s.status[1] == Status::Stick);
+    CHECK(s.status[2] == Status::Slide);
+    CHECK(s.status[3] == Status::Slide);
+  }
+}
+
 TEST_CASE("a solver reused along a sequence of problems (cached active-set factorization) gives fresh solutions",
           "[solver]") {
   // Like the stages of a time step: the same W0, beta and the load drifting, so the status
