@@ -11,6 +11,9 @@ void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& upd
   pass_over_pairs<LocalVector>(dim, update, [&](Eigen::Index first, const LocalVector& dy) { add_response(first, dy, u); }, y);
 }
 
+DenseDelassus::DenseDelassus(Eigen::MatrixXd W)
+    : W_(std::move(W)), diagonal_scale_(W_.size() > 0 ? W_.diagonal().cwiseAbs().maxCoeff() : 0.0) {}
+
 void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
   u.noalias() = W_ * y;
 }

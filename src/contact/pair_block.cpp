@@ -38,15 +38,20 @@ void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<d
     b.shift = -pair<dim>(pb.u_ref, i);
     b.shift[dim - 1] = pb.g0[i];
     b.mubar = pb.mubar[i];
-    const Mat A = Mat::Identity() - b.Wii * b.E.asDiagonal();
-    if (std::abs(A.determinant()) < tuning::singular_pair) {
-      std::ostringstream m;
-      m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
-        << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
-      throw SolveError(m.str(), i);
+    if (b.E.isZero(0.0)) {  // no spring to fold in (a bonded pair whose spring W0 holds, a plain problem)
+      b.M.setIdentity();
+      b.Wb = b.Wii;
+    } else {
+      const Mat A = Mat::Identity() - b.Wii * b.E.asDiagonal();
+      if (std::abs(A.determinant()) < tuning::singular_pair) {
+        std::ostringstream m;
+        m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
+          << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
+        throw SolveError(m.str(), i);
+      }
+      b.M = A.inverse();
+      b.Wb = b.M * b.Wii;
     }
-    b.M = A.inverse();
-    b.Wb = b.M * b.Wii;
     b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
     const double lmax = largest_eigenvalue(b.Wb);
     b.prescribed = lmax <= tuning::prescribed_pair * scale;

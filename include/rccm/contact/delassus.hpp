@@ -96,16 +96,17 @@ void gauss_seidel_pass(const DelassusOperator& W0, const Update& update, Eigen::
 /// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few hundred pairs.
 class DenseDelassus final : public DelassusOperator {
  public:
-  explicit DenseDelassus(Eigen::MatrixXd W) : W_(std::move(W)) {}
+  explicit DenseDelassus(Eigen::MatrixXd W);
   Eigen::Index size() const override { return W_.rows(); }
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
   void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.block(first, first, n, n); }
-  double diagonal_scale() const override { return W_.diagonal().cwiseAbs().maxCoeff(); }
+  double diagonal_scale() const override { return diagonal_scale_; }
   const Eigen::MatrixXd* dense() const override { return &W_; }
 
  private:
   Eigen::MatrixXd W_;
+  double diagonal_scale_;
 };
 
 /// W0 known only compressed (la/hodlr.hpp), never formed: memory, products and Gauss-Seidel
