@@ -1,5 +1,5 @@
 // Everything a run builds from its config and its mesh: loads, elastic body (K0 factorized
-// once, or again when its springs follow beta: condense()), interface and condensation. Data
+// once, or again when many springs follow beta at once: condense()), interface and condensation. Data
 // flows Config + Mesh -> LoadCases -> ElasticProblem -> Interface -> Condensation
 // (docs/ARCHITECTURE.md); the model then poses the contact problem at any (t, beta).
 #pragma once
@@ -71,8 +71,8 @@ class Model {
   /// sweeps' rate: a pair that has lost its adhesion is no longer held in W0 by a spring that E
   /// must take back.
   void condense(const Eigen::VectorXd& beta);
-  /// Whether K0's springs lag `beta` enough for condense(beta) to pay (solver.springs_follow_beta):
-  /// tuning::springs_lag_fraction of the pairs with a spring weaker than 1 / springs_lag_ratio of K0's.
+  /// Whether W0's springs lag `beta` enough for condense() to pay (solver.springs_follow_beta):
+  /// tuning::springs_lag_fraction of the pairs with a spring weaker than 1 / springs_lag_ratio of W0's.
   bool springs_lag(const Eigen::VectorXd& beta) const;
   /// The springs' beta to condense at when they lag `beta`: beta where a pair's spring weighs
   /// more than tuning::springs_follow_ratio times its weight at beta, springs_beta() elsewhere
