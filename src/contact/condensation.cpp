@@ -80,11 +80,16 @@ void Condensation::change_springs(const Eigen::VectorXd& dD) {
   G = 0.5 * (G + G.transpose()).eval();  // symmetric but for round-off
   const Eigen::MatrixXd AG = A * G;
   Q_ += AG * Q_S;
+  // The old W0 goes before the new one's other parts are built (the peak memory of a run).
   if (const Eigen::MatrixXd* W = W0_->dense()) {
     Eigen::MatrixXd Wc = *W + AG * A.transpose();
-    W0_ = std::make_unique<DenseDelassus>(0.5 * (Wc + Wc.transpose()));
+    W0_.reset();
+    Wc = 0.5 * (Wc + Wc.transpose()).eval();
+    W0_ = std::make_unique<DenseDelassus>(std::move(Wc));
   } else {
-    W0_ = std::make_unique<CompressedDelassus>(W0_->compressed()->plus(AG, A, tuning::hodlr_accuracy));
+    HodlrMatrix Wc = W0_->compressed()->plus(AG, A, tuning::hodlr_accuracy);
+    W0_.reset();
+    W0_ = std::make_unique<CompressedDelassus>(std::move(Wc));
   }
   if (shift_.size() == 0) shift_ = Eigen::VectorXd::Zero(m);
   shift_ += dD;
