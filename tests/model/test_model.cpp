@@ -130,6 +130,50 @@ TEST_CASE("W0 from the Schur complement of the interface DOFs equals P K0^-1 P^T
   }
 }
 
+namespace {
+
+/// The loads' force at t = 1 (all DOFs).
+Eigen::VectorXd loads_at_1(const Model& model) {
+  Eigen::VectorXd F = Eigen::VectorXd::Zero(model.interface().P.cols());
+  for (const LoadCase& lc : model.loads()) F += lc.amplitude(1.0) * lc.force;
+  return F;
+}
+
+/// The model's condensation at springs(beta) against K0 = K + springs(beta) solved directly:
+/// q0 at t = 1, W0's products with Y's columns and the body's displacement under them (and a
+/// dense W0 itself, symmetric).
+void check_against_direct_K0(const Model& model, const Eigen::VectorXd& beta, const Eigen::MatrixXd& Y) {
+  const Eigen::MatrixXd P = model.interface().P;
+  const Eigen::VectorXd F = loads_at_1(model);
+  const Eigen::VectorXd w = beta.cwiseProduct(beta).cwiseMax(tuning::springs_floor);
+  const Eigen::LDLT<Eigen::MatrixXd> direct(Eigen::MatrixXd(model.stiffness() + model.interface().springs(w, w)));
+  const Eigen::MatrixXd W_direct = P * direct.solve(P.transpose());
+  const Eigen::VectorXd q0_direct = P * direct.solve(F);
+  const Condensation& c = model.condensation();
+  CHECK((c.q0(1.0) - q0_direct).norm() <= 1e-10 * q0_direct.norm());
+  if (const Eigen::MatrixXd* W0 = c.W0().dense()) {
+    CHECK((*W0 - W_direct).norm() <= 1e-11 * W_direct.norm());
+    CHECK(*W0 == W0->transpose());
+  }
+  for (int k = 0; k < Y.cols(); ++k) {
+    Eigen::VectorXd Wy(P.rows());
+    c.W0().multiply(Y.col(k), Wy);
+    CHECK((Wy - W_direct * Y.col(k)).norm() <= 1e-10 * (W_direct * Y.col(k)).norm());
+    const Eigen::VectorXd u = c.displacement(1.0, Y.col(k));
+    const Eigen::VectorXd u_direct = direct.solve(P.transpose() * Y.col(k) + F);
+    CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
+  }
+}
+
+/// Random interface forces: `columns` of them, uniform in [-1, 1].
+Eigen::MatrixXd random_forces(const Model& model, int columns, unsigned seed) {
+  std::mt19937 gen(seed);
+  std::uniform_real_distribution<double> U(-1, 1);
+  return Eigen::MatrixXd::NullaryExpr(model.interface().P.rows(), columns, [&]() { return U(gen); });
+}
+
+}  // namespace
+
 TEST_CASE("condensations at damaged betas with W0 compressed: W0 q0 and the body equal direct solves of K0", "[model]") {
   // Model::condense on a compressed W0 (peeled from sparse solves): W0's products, q0 and the
   // body's displacement against K0 = K + springs(beta) solved directly, at beta = 1, at a
@@ -142,12 +186,7 @@ TEST_CASE("condensations at damaged betas with W0 compressed: W0 q0 and the body
   const int n = model.contact_nodes();
   REQUIRE(n == 100);
   REQUIRE(model.condensation().W0().compressed() != nullptr);
-  const Eigen::MatrixXd P = model.interface().P;
-  Eigen::VectorXd F = Eigen::VectorXd::Zero(P.cols());
-  for (const LoadCase& lc : model.loads()) F += lc.amplitude(1.0) * lc.force;
-  std::mt19937 gen(5);
-  std::uniform_real_distribution<double> U(-1, 1);
-  const Eigen::MatrixXd Y = Eigen::MatrixXd::NullaryExpr(P.rows(), 4, [&]() { return U(gen); });
+  const Eigen::MatrixXd Y = random_forces(model, 4, 5);
   Eigen::VectorXd beta = Eigen::VectorXd::Ones(n);
   for (int stage = 0; stage < 3; ++stage) {
     if (stage == 1)
@@ -156,21 +195,7 @@ TEST_CASE("condensations at damaged betas with W0 compressed: W0 q0 and the body
       for (int i = 0; i < n; ++i) beta[i] = std::min(beta[i], i % 4 == 0 ? 0.2 : 0.9);
     if (stage > 0) model.condense(beta);
     INFO("stage " << stage);
-    const Eigen::VectorXd w = beta.cwiseProduct(beta).cwiseMax(tuning::springs_floor);
-    const Eigen::MatrixXd K0 = Eigen::MatrixXd(model.stiffness() + model.interface().springs(w, w));
-    const Eigen::LDLT<Eigen::MatrixXd> direct(K0);
-    const Eigen::MatrixXd W_direct = P * direct.solve(P.transpose());
-    const Eigen::VectorXd q0_direct = P * direct.solve(F);
-    const Condensation& c = model.condensation();
-    for (int k = 0; k < Y.cols(); ++k) {
-      Eigen::VectorXd Wy(P.rows());
-      c.W0().multiply(Y.col(k), Wy);
-      CHECK((Wy - W_direct * Y.col(k)).norm() <= 1e-10 * (W_direct * Y.col(k)).norm());
-      const Eigen::VectorXd u = c.displacement(1.0, Y.col(k));
-      const Eigen::VectorXd u_direct = direct.solve(P.transpose() * Y.col(k) + F);
-      CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
-    }
-    CHECK((c.q0(1.0) - q0_direct).norm() <= 1e-10 * q0_direct.norm());
+    check_against_direct_K0(model, beta, Y);
   }
 }
 
@@ -191,12 +216,7 @@ TEST_CASE("springs changed on a few pairs by Woodbury's formula: W0 q0 the body 
     REQUIRE(n == 100);
     REQUIRE((model.condensation().W0().compressed() != nullptr) == compressed);
     const Condensation* const first = &model.condensation();
-    const Eigen::MatrixXd P = model.interface().P;
-    Eigen::VectorXd F = Eigen::VectorXd::Zero(P.cols());
-    for (const LoadCase& lc : model.loads()) F += lc.amplitude(1.0) * lc.force;
-    std::mt19937 gen(7);
-    std::uniform_real_distribution<double> U(-1, 1);
-    const Eigen::MatrixXd Y = Eigen::MatrixXd::NullaryExpr(P.rows(), 3, [&]() { return U(gen); });
+    const Eigen::MatrixXd Y = random_forces(model, 3, 7);
     Eigen::VectorXd beta = Eigen::VectorXd::Ones(n);
     for (int stage = 1; stage <= 3; ++stage) {
       INFO("stage " << stage);
@@ -206,33 +226,16 @@ TEST_CASE("springs changed on a few pairs by Woodbury's formula: W0 q0 the body 
       model.condense(beta);
       REQUIRE(&model.condensation() == first);  // no new condensation: K0 kept
       CHECK(model.springs_beta() == beta);
-      const Eigen::VectorXd w = beta.cwiseProduct(beta).cwiseMax(tuning::springs_floor);
-      const Eigen::MatrixXd K0 = Eigen::MatrixXd(model.stiffness() + model.interface().springs(w, w));
-      const Eigen::LDLT<Eigen::MatrixXd> direct(K0);
-      const Eigen::MatrixXd W_direct = P * direct.solve(P.transpose());
-      const Eigen::VectorXd q0_direct = P * direct.solve(F);
+      check_against_direct_K0(model, beta, Y);
       const Condensation& c = model.condensation();
-      CHECK((c.q0(1.0) - q0_direct).norm() <= 1e-10 * q0_direct.norm());
-      if (!compressed) {
-        const Eigen::MatrixXd& W0 = *c.W0().dense();
-        CHECK((W0 - W_direct).norm() <= 1e-11 * W_direct.norm());
-        CHECK(W0 == W0.transpose());
-      }
-      for (int k = 0; k < Y.cols(); ++k) {
-        Eigen::VectorXd Wy(P.rows());
-        c.W0().multiply(Y.col(k), Wy);
-        CHECK((Wy - W_direct * Y.col(k)).norm() <= 1e-10 * (W_direct * Y.col(k)).norm());
-        const Eigen::VectorXd u = c.displacement(1.0, Y.col(k));
-        const Eigen::VectorXd u_direct = direct.solve(P.transpose() * Y.col(k) + F);
-        CHECK((u - u_direct).norm() <= 1e-10 * u_direct.norm());
-      }
       // The body forms (condensed with K0 at beta = 1) see the force of K0's splitting: the
       // probes-free resultants of a step equal those of the full displacement.
       InterfaceState s = InterfaceState::initial(model);
       s.t = 1.0, s.beta = beta, s.y = Y.col(0);
       c.W0().multiply(s.y, s.u);
       s.u += c.q0(1.0);
-      s.Rbar = s.y - (model.contact_problem(1.0, beta, s.u).Dref - model.contact_problem(1.0, beta, s.u).Dbeta).cwiseProduct(s.u);
+      const ContactProblem pb = model.contact_problem(1.0, beta, s.u);
+      s.Rbar = s.y - (pb.Dref - pb.Dbeta).cwiseProduct(s.u);
       const BodyState full = body_state(model, s), forms = body_resultants(model, s);
       REQUIRE(full.force.size() == 2);
       for (std::size_t k = 0; k < full.force.size(); ++k) {
