@@ -24,10 +24,12 @@ void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eige
   add_columns<3>(W_, first, dy, u);
 }
 
-CompressedDelassus::CompressedDelassus(HodlrMatrix W)
-    : W_(std::move(W)),
-      preconditioner_(W_.truncated(tuning::hodlr_preconditioner_accuracy)),
-      diagonal_scale_(W_.diagonal_scale()) {}
+CompressedDelassus::CompressedDelassus(HodlrMatrix W) : W_(std::move(W)), diagonal_scale_(W_.diagonal_scale()) {}
+
+const HodlrMatrix* CompressedDelassus::compressed_preconditioner() const {
+  if (!preconditioner_) preconditioner_.emplace(W_.truncated(tuning::hodlr_preconditioner_accuracy));
+  return &*preconditioner_;
+}
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
   u = W_.multiply(y);

@@ -16,7 +16,12 @@ struct HodlrMatrix::Node {
   Eigen::Index begin = 0, end = 0;
   Eigen::MatrixXd dense;                  // a leaf's block
   std::unique_ptr<Node> first, second;    // the halves of a bisection
-  Eigen::MatrixXd U12, V12, U21, V21;     // A(first, second) = U12 V12^T, A(second, first) = U21 V21^T
+  // A(second, first) = U21 V21^T and A(first, second) = U12 V12^T, where on a symmetric matrix
+  // (`mirrored`) U12 = V21 and V12 = U21 are not stored again: half the memory and traffic.
+  Eigen::MatrixXd U21, V21, U12_own, V12_own;
+  bool mirrored = false;
+  const Eigen::MatrixXd& U12() const { return mirrored ? V21 : U12_own; }
+  const Eigen::MatrixXd& V12() const { return mirrored ? U21 : V12_own; }
   bool leaf() const { return !first; }
 };
 
@@ -142,7 +147,7 @@ void subtract_coarse(const HodlrMatrix::Node& node, int depth, const Eigen::Matr
   if (node.leaf() || depth == 0) return;
   const HodlrMatrix::Node &a = *node.first, &b = *node.second;
   const Eigen::Index n1 = a.end - a.begin, n2 = b.end - b.begin;
-  Y.middleRows(a.begin, n1).noalias() -= node.U12 * (node.V12.transpose() * X.middleRows(b.begin, n2));
+  Y.middleRows(a.begin, n1).noalias() -= node.U12() * (node.V12().transpose() * X.middleRows(b.begin, n2));
   Y.middleRows(b.begin, n2).noalias() -= node.U21 * (node.V21.transpose() * X.middleRows(a.begin, n1));
   subtract_coarse(a, depth - 1, X, Y);
   subtract_coarse(b, depth - 1, X, Y);
@@ -154,7 +159,7 @@ Columns multiply(const HodlrMatrix::Node& node, const Eigen::Ref<const Columns>&
   if (node.leaf()) return node.dense * x;
   const Eigen::Index n1 = node.first->end - node.first->begin, n2 = node.end - node.begin - n1;
   Columns y(x.rows(), x.cols());
-  y.topRows(n1) = multiply<Columns>(*node.first, x.topRows(n1)) + node.U12 * (node.V12.transpose() * x.bottomRows(n2));
+  y.topRows(n1) = multiply<Columns>(*node.first, x.topRows(n1)) + node.U12() * (node.V12().transpose() * x.bottomRows(n2));
   y.bottomRows(n2) = multiply<Columns>(*node.second, x.bottomRows(n2)) + node.U21 * (node.V21.transpose() * x.topRows(n1));
   return y;
 }
@@ -196,7 +201,7 @@ void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void
   y.segment(b.begin, b.end - b.begin) += node.U21 * (node.V21.transpose() * (x.segment(a.begin, a.end - a.begin) - x1));
   const Eigen::VectorXd x2 = x.segment(b.begin, b.end - b.begin);
   gauss_seidel(b, g, visit, x, y);
-  y.segment(a.begin, a.end - a.begin) += node.U12 * (node.V12.transpose() * (x.segment(b.begin, b.end - b.begin) - x2));
+  y.segment(a.begin, a.end - a.begin) += node.U12() * (node.V12().transpose() * (x.segment(b.begin, b.end - b.begin) - x2));
 }
 
 /// Rows [begin, begin + M.rows()) of blockdiag(C) M, C's blocks g x g side by side.
@@ -217,7 +222,7 @@ std::unique_ptr<HodlrMatrix::Node> mixed(const HodlrMatrix::Node& a, const Eigen
   }
   node->first = mixed(*a.first, Cw, Cy, g);
   node->second = mixed(*a.second, Cw, Cy, g);
-  node->U12 = left_blocks(Cw, a.first->begin, a.U12, g), node->V12 = a.V12;
+  node->U12_own = left_blocks(Cw, a.first->begin, a.U12(), g), node->V12_own = a.V12();
   node->U21 = left_blocks(Cw, a.second->begin, a.U21, g), node->V21 = a.V21;
   return node;
 }
@@ -233,7 +238,7 @@ void remix(HodlrMatrix::Node& node, const HodlrMatrix::Node& a, const Eigen::Mat
     return;
   }
   if (first < a.second->begin) {
-    node.U12.middleRows(first - a.begin, g).noalias() = C * a.U12.middleRows(first - a.begin, g);
+    node.U12_own.middleRows(first - a.begin, g).noalias() = C * a.U12().middleRows(first - a.begin, g);
     remix(*node.first, *a.first, Cw, Cy, first, g);
   } else {
     node.U21.middleRows(first - a.second->begin, g).noalias() = C * a.U21.middleRows(first - a.second->begin, g);
@@ -261,7 +266,7 @@ HodlrMatrix::HodlrMatrix(const Eigen::MatrixXd& A, double tolerance, int leaf_si
       return;
     }
     const Eigen::Index mid = n.second->begin, n1 = mid - n.begin, n2 = n.end - mid;
-    compress(A.block(n.begin, mid, n1, n2), tolerance, rng, n.U12, n.V12);
+    compress(A.block(n.begin, mid, n1, n2), tolerance, rng, n.U12_own, n.V12_own);
     compress(A.block(mid, n.begin, n2, n1), tolerance, rng, n.U21, n.V21);
   });
 }
@@ -324,7 +329,8 @@ HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double 
         open = open || !ranges[k].done;
       }
     }
-    // A(second, first) Q = B^T Q (A symmetric), B ~ Q (B^T Q)^T; and A(second, first) = B^T.
+    // A(second, first) Q = B^T Q (A symmetric), B ~ Q (B^T Q)^T = U V^T truncated; and
+    // A(second, first) = B^T = V U^T, mirrored into A(first, second).
     Eigen::Index rank = 0;
     for (const RangeFinder& r : ranges) rank = std::max(rank, r.Q.cols());
     coarser_rank = rank;
@@ -335,8 +341,8 @@ HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double 
     for (std::size_t k = 0; k < level.size(); ++k) {
       Node& n = *level[k];
       const Eigen::Index n2 = n.end - n.second->begin;
-      truncate(ranges[k].Q, BtQ.block(n.second->begin, 0, n2, ranges[k].Q.cols()), tolerance, n.U12, n.V12);
-      n.U21 = n.V12, n.V21 = n.U12;
+      truncate(ranges[k].Q, BtQ.block(n.second->begin, 0, n2, ranges[k].Q.cols()), tolerance, n.V21, n.U21);
+      n.mirrored = true;
     }
   }
   subtract_coarse(*H.root_, std::numeric_limits<int>::max(), units, leaf_products);
@@ -410,7 +416,9 @@ HodlrMatrix HodlrMatrix::plus(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y
     n->first = copy(*a.first);
     n->second = copy(*a.second);
     const Eigen::Index b1 = a.first->begin, n1 = a.first->end - b1, b2 = a.second->begin, n2 = a.end - b2;
-    recompress(beside(a.U12, X.middleRows(b1, n1)), beside(a.V12, Y.middleRows(b2, n2)), tolerance, n->U12, n->V12);
+    n->mirrored = a.mirrored;
+    if (!a.mirrored)
+      recompress(beside(a.U12(), X.middleRows(b1, n1)), beside(a.V12(), Y.middleRows(b2, n2)), tolerance, n->U12_own, n->V12_own);
     recompress(beside(a.U21, X.middleRows(b2, n2)), beside(a.V21, Y.middleRows(b1, n1)), tolerance, n->U21, n->V21);
     return n;
   };
@@ -422,13 +430,13 @@ HodlrMatrix HodlrMatrix::plus(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y
 
 int HodlrMatrix::max_rank() const {
   Eigen::Index r = 0;
-  visit(*root_, [&](const Node& n) { r = std::max({r, n.U12.cols(), n.U21.cols()}); });
+  visit(*root_, [&](const Node& n) { r = std::max({r, n.U12().cols(), n.U21.cols()}); });
   return static_cast<int>(r);
 }
 
 Eigen::Index HodlrMatrix::stored() const {
   Eigen::Index s = 0;
-  visit(*root_, [&](const Node& n) { s += n.dense.size() + n.U12.size() + n.V12.size() + n.U21.size() + n.V21.size(); });
+  visit(*root_, [&](const Node& n) { s += n.dense.size() + n.U12_own.size() + n.V12_own.size() + n.U21.size() + n.V21.size(); });
   return s;
 }
 
@@ -470,7 +478,7 @@ std::unique_ptr<HodlrSolver::Node> shape(const HodlrMatrix::Node& a) {
   auto node = std::make_unique<HodlrSolver::Node>();
   if (a.leaf()) return node;
   node->n1 = a.first->end - a.first->begin;
-  node->V12 = a.V12, node->V21 = a.V21;
+  node->V12 = a.V12(), node->V21 = a.V21;
   node->first = shape(*a.first);
   node->second = shape(*a.second);
   return node;
@@ -486,12 +494,12 @@ void factorize(HodlrSolver::Node& node, const HodlrMatrix::Node& a, const Touche
   }
   factorize(*node.first, *a.first, touched);
   factorize(*node.second, *a.second, touched);
-  if (touched(a.first->begin, a.first->end)) node.X1 = node.first->solve(a.U12);
+  if (touched(a.first->begin, a.first->end)) node.X1 = node.first->solve(a.U12());
   if (touched(a.second->begin, a.second->end)) node.X2 = node.second->solve(a.U21);
-  const Eigen::Index r1 = a.U12.cols(), r2 = a.U21.cols();
+  const Eigen::Index r1 = a.U12().cols(), r2 = a.U21.cols();
   if (r1 + r2 == 0) return;
   Eigen::MatrixXd K = Eigen::MatrixXd::Identity(r1 + r2, r1 + r2);
-  K.topRightCorner(r1, r2) = a.V12.transpose() * node.X2;
+  K.topRightCorner(r1, r2) = a.V12().transpose() * node.X2;
   K.bottomLeftCorner(r2, r1) = a.V21.transpose() * node.X1;
   node.capacitance.compute(K);
 }

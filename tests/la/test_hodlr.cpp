@@ -60,6 +60,11 @@ TEST_CASE("HODLR: a symmetric matrix compressed from its products alone (peeling
   CHECK(P.max_rank() <= D.max_rank() + 2);
   CHECK(P.max_rank() >= D.max_rank() - 2);
   CHECK(columns < m / 2);
+  // Each pair of blocks A(first, second) = A(second, first)^T stored once: beside the same
+  // leaves (20 of 32 x 32), about half the compression of both blocks from A itself.
+  const Eigen::Index leaves = 20 * 32 * 32;
+  CHECK(P.stored() - leaves <= 0.55 * (D.stored() - leaves));
+  CHECK(P.stored() - leaves >= 0.35 * (D.stored() - leaves));
   CHECK(P.diagonal_scale() == Approx(scale).epsilon(1e-13));
   for (Eigen::Index first : {0, 30, 320, 638})
     CHECK((P.diagonal_block(first, 2) - A.block(first, first, 2, 2)).norm() <= 10 * relative * scale);
@@ -295,4 +300,28 @@ TEST_CASE("HODLR: plus a low-rank matrix is the sum to the tolerance and takes t
   // Solves with the sum agree with the dense ones.
   const Eigen::MatrixXd sol = HodlrSolver(S).solve(Z);
   CHECK((B * sol - Z).norm() <= 1e-9 * Z.norm());
+}
+
+TEST_CASE("HODLR: a symmetric matrix plus a symmetric low-rank term stays symmetric and stored once", "[hodlr]") {
+  // W0 peeled, then changed by Woodbury's A G A^T (Condensation::change_springs).
+  const int m = 640;
+  const Eigen::MatrixXd A = kernel_matrix(m);
+  const auto products = [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); };
+  const HodlrMatrix P = HodlrMatrix::symmetric(m, products, 1e-13, 32, 2);
+  std::srand(12);
+  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(m, 5), G0 = Eigen::MatrixXd::Random(5, 5);
+  const Eigen::MatrixXd G = G0 + G0.transpose();
+  const Eigen::MatrixXd B = A + X * G * X.transpose();
+  const HodlrMatrix S = P.plus(X * G, X, 1e-13);
+  const Eigen::MatrixXd Z = Eigen::MatrixXd::Random(m, 3);
+  CHECK((S.multiply_block(Z) - B * Z).norm() <= 1e-11 * (B * Z).norm());
+  // Symmetric to round-off: z^T S x = x^T S z.
+  const double zSx = Z.col(0).dot(S.multiply(Z.col(1))), xSz = Z.col(1).dot(S.multiply(Z.col(0)));
+  CHECK(std::abs(zSx - xSz) <= 1e-13 * std::abs(zSx));
+  // Rank 5 more at most, each block once: 5 columns more in U21 and V21 at each of the 5
+  // levels of bisections add 25 m doubles (both blocks stored: 50 m).
+  CHECK(S.max_rank() <= P.max_rank() + 5);
+  CHECK(S.stored() <= P.stored() + 30 * m);
+  // Solves with it agree with the dense ones.
+  CHECK((B * HodlrSolver(S).solve(Z) - Z).norm() <= 1e-9 * Z.norm());
 }

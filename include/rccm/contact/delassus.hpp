@@ -126,11 +126,13 @@ class CompressedDelassus final : public DelassusOperator {
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
   const HodlrMatrix* compressed() const override { return &W_; }
-  const HodlrMatrix* compressed_preconditioner() const override { return &preconditioner_; }
+  /// Truncated at the first call: only the exact step asks (never the 3D sweeps), and a W0
+  /// replaced when the springs follow beta is truncated again only if asked.
+  const HodlrMatrix* compressed_preconditioner() const override;
 
  private:
   HodlrMatrix W_;
-  HodlrMatrix preconditioner_;  // W_ truncated to tuning::hodlr_preconditioner_accuracy
+  mutable std::optional<HodlrMatrix> preconditioner_;  // W_ truncated to tuning::hodlr_preconditioner_accuracy
   double diagonal_scale_;
 };
 

@@ -27,7 +27,8 @@ class HodlrMatrix {
   /// Compresses the symmetric matrix A known only by its products, never formed (peeling:
   /// about (r log m + leaf_size) columns of products in blocks of a few, r the blocks'
   /// rank): leaves and bisections as above, off-diagonal blocks to `relative_tolerance` of
-  /// A's largest diagonal entry.
+  /// A's largest diagonal entry, each pair of blocks A(first, second) = A(second, first)^T
+  /// stored once.
   static HodlrMatrix symmetric(Eigen::Index size, const Products& A, double relative_tolerance, int leaf_size,
                                int granule);
   ~HodlrMatrix();
@@ -65,7 +66,9 @@ class HodlrMatrix {
   /// This matrix plus X Y^T (X, Y with this size's rows): the leaves added to, each
   /// off-diagonal block's factors extended by X's and Y's rows and recompressed as truncated()
   /// does, no products: a change of low rank (W0 when a few pairs' springs change,
-  /// Condensation::change_springs) for about m (r + k)^2 log m, k = X's columns.
+  /// Condensation::change_springs) for about m (r + k)^2 log m, k = X's columns. A matrix
+  /// from symmetric() stays symmetric, its blocks stored once: X Y^T must be symmetric too
+  /// (A G A^T with G symmetric), as only its blocks below the diagonal are added.
   HodlrMatrix plus(const Eigen::MatrixXd& X, const Eigen::MatrixXd& Y, double relative_tolerance) const;
   /// The largest rank of an off-diagonal block, and the doubles stored.
   int max_rank() const;
