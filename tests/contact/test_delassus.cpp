@@ -2,6 +2,7 @@
 // one, and the bipotential solver gives the same solution on either; the solvers that need
 // the dense W0 say so.
 #include "rccm/contact/contact_solver.hpp"
+#include "rccm/contact/solver_tuning.hpp"
 #include "rccm/base/errors.hpp"
 #include "random_problem.hpp"
 
@@ -111,6 +112,13 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
   CHECK((ucompressed - upass).norm() <= 1e-11 * upass.norm());
   CHECK((upass - W * yp - q).norm() <= 1e-12 * upass.norm());
   CHECK((ucompressed - W * yc - q).norm() <= 1e-12 * ucompressed.norm());
+  // The exact step's preconditioner: W0 truncated to tuning::hodlr_preconditioner_accuracy of
+  // its diagonal (lower ranks), made at the first call and kept.
+  const HodlrMatrix* P = compressed.compressed_preconditioner();
+  REQUIRE(P != nullptr);
+  CHECK(compressed.compressed_preconditioner() == P);
+  CHECK(P->max_rank() < compressed.compressed()->max_rank());
+  CHECK((P->multiply(y) - W * y).norm() <= 10 * tuning::hodlr_preconditioner_accuracy * plain.diagonal_scale() * y.norm());
 }
 
 TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the dense one", "[delassus]") {
