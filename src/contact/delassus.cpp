@@ -3,8 +3,18 @@
 #include "rccm/contact/solver_tuning.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/format.hpp"
 
 namespace rccm {
+
+namespace {
+
+/// "rows x rows" and the MB of `doubles`.
+std::string shape_and_memory(Eigen::Index rows, double doubles) {
+  return std::to_string(rows) + " x " + std::to_string(rows) + " (" + fmt("%.3g", doubles * sizeof(double) / 1e6) + " MB";
+}
+
+}  // namespace
 
 void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                                     Eigen::VectorXd& u) const {
@@ -13,6 +23,8 @@ void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& upd
 
 DenseDelassus::DenseDelassus(Eigen::MatrixXd W)
     : W_(std::move(W)), diagonal_scale_(W_.size() > 0 ? W_.diagonal().cwiseAbs().maxCoeff() : 0.0) {}
+
+std::string DenseDelassus::storage() const { return "dense, " + shape_and_memory(size(), double(W_.size())) + ")"; }
 
 void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
   u.noalias() = W_ * y;
@@ -29,6 +41,12 @@ CompressedDelassus::CompressedDelassus(HodlrMatrix W) : W_(std::move(W)), diagon
 const HodlrMatrix* CompressedDelassus::compressed_preconditioner() const {
   if (!preconditioner_) preconditioner_.emplace(W_.truncated(tuning::hodlr_preconditioner_accuracy));
   return &*preconditioner_;
+}
+
+std::string CompressedDelassus::storage() const {
+  const double m = double(size());
+  return "compressed (HODLR), " + shape_and_memory(size(), double(W_.stored())) + ", " +
+         fmt("%.0f", 100.0 * double(W_.stored()) / (m * m)) + " % of dense), largest rank " + std::to_string(W_.max_rank());
 }
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
@@ -50,6 +68,11 @@ void CompressedDelassus::gauss_seidel(int dim, const std::function<void(int)>& u
 SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W)) {
   W_.makeCompressed();
   diagonal_scale_ = W_.rows() > 0 ? W_.diagonal().cwiseAbs().maxCoeff() : 0.0;
+}
+
+std::string SparseDelassus::storage() const {
+  // A nonzero: its value and its row index (an int), 1.5 doubles.
+  return "sparse, " + shape_and_memory(size(), 1.5 * double(W_.nonZeros())) + ", " + std::to_string(W_.nonZeros()) + " nonzeros)";
 }
 
 void SparseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {

@@ -70,6 +70,7 @@ void Recorder::open(const Model& model) {
   result_.dofs = model.mesh().num_dofs();
   result_.contact_nodes = model.contact_nodes();
   result_.linear_solver = model.linear_solver();
+  result_.flexibility = model.condensation().W0().storage();
   result_.bodies = model.mesh().body_names;
   result_.pairs_per_interface.assign(cfg_.interfaces.size(), 0);
   for (const ContactPair& c : model.interface().pairs) ++result_.pairs_per_interface[c.law];

@@ -27,7 +27,8 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
   out << "rccm run report: " << cfg.file << "\n"
       << "mesh: " << r.nodes << " nodes, " << r.cells << " cells, " << r.dofs << " DOFs, " << r.contact_nodes
       << " contact nodes\n"
-      << "body's solves: " << r.linear_solver << "\n";
+      << "body's solves: " << r.linear_solver << "\n"
+      << "interface flexibility W0: " << r.flexibility << "\n";
   if (const StateSlices& s = r.integrator.slices; s.processes > 0)
     out << "beta (ARKODE's state) distributed over " << s.processes << " processes: " << s.smallest << " to "
         << s.largest << " contact pairs each, " << s.pairs << " in all\n";
@@ -154,6 +155,7 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"dofs", r.dofs},
                        {"contact_nodes", r.contact_nodes},
                        {"linear_solver", r.linear_solver},
+                       {"flexibility", r.flexibility},
                        {"beta_slices", I.slices.processes == 0 ? json(nullptr)
                                                                : json{{"processes", I.slices.processes},
                                                                       {"smallest", I.slices.smallest},

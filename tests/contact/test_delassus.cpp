@@ -4,6 +4,7 @@
 #include "rccm/contact/contact_solver.hpp"
 #include "rccm/contact/solver_tuning.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/base/format.hpp"
 #include "random_problem.hpp"
 
 #include <Eigen/Dense>
@@ -51,6 +52,11 @@ TEST_CASE("Sparse and dense W0 are the same operator", "[delassus]") {
   CHECK(sparse.size() == dense.size());
   CHECK(sparse.diagonal_scale() == dense.diagonal_scale());
   CHECK(sparse.dense() == nullptr);
+  // The run report's line: a nonzero is its value and an int row index (12 bytes).
+  const std::string rows = std::to_string(S.rows()) + " x " + std::to_string(S.rows());
+  CHECK(sparse.storage() == "sparse, " + rows + " (" + fmt("%.3g", 12e-6 * double(S.nonZeros())) + " MB, " +
+                                std::to_string(S.nonZeros()) + " nonzeros)");
+  CHECK(dense.storage() == "dense, " + rows + " (" + fmt("%.3g", 8e-6 * double(S.rows() * S.rows())) + " MB)");
   std::uniform_real_distribution<double> U(-1, 1);
   const Eigen::VectorXd y = Eigen::VectorXd::NullaryExpr(S.rows(), [&]() { return U(gen); });
   Eigen::VectorXd us(S.rows()), ud(S.rows());
@@ -119,6 +125,13 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
   CHECK(compressed.compressed_preconditioner() == P);
   CHECK(P->max_rank() < compressed.compressed()->max_rank());
   CHECK((P->multiply(y) - W * y).norm() <= 10 * tuning::hodlr_preconditioner_accuracy * plain.diagonal_scale() * y.norm());
+  // The run report's line: the dense W0's m^2 doubles, the compressed one's stored doubles
+  // and their share of m^2, its largest rank.
+  CHECK(plain.storage() == "dense, 300 x 300 (0.72 MB)");  // 90 000 doubles
+  const HodlrMatrix& H = *compressed.compressed();
+  CHECK(compressed.storage() == "compressed (HODLR), 300 x 300 (" + fmt("%.3g", 8e-6 * double(H.stored())) + " MB, " +
+                                    fmt("%.0f", 100.0 * double(H.stored()) / (m * m)) + " % of dense), largest rank " +
+                                    std::to_string(H.max_rank()));
 }
 
 TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the dense one", "[delassus]") {

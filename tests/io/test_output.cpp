@@ -78,6 +78,9 @@ TEST_CASE("CSV round trip: interface, history and curves hold the solver's value
   CHECK(report["energy"]["imbalance"].get<double>() == r.energy.imbalance());
   CHECK(report["per_step"].size() == r.steps.size());
   CHECK(report["complete"].get<bool>());
+  // W0 of B1's 33 pairs: dense, 66^2 doubles.
+  CHECK(report["flexibility"].get<std::string>() == "dense, 66 x 66 (0.0348 MB)");
+  CHECK(test::read_text((dir / "report.txt").string()).find("interface flexibility W0: dense, 66 x 66 (0.0348 MB)\n") != std::string::npos);
   fs::remove_all(dir);
 }
 

@@ -11,6 +11,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 
 namespace rccm {
 
@@ -40,6 +41,9 @@ class DelassusOperator {
 
   /// The largest magnitude on the diagonal (a scale for "no flexibility").
   virtual double diagonal_scale() const = 0;
+
+  /// How W0 is stored and its memory, for the run report: "dense, 198 x 198 (0.3 MB)".
+  virtual std::string storage() const = 0;
 
   /// The matrix itself when it is stored dense (the exact active-set step and the plain form
   /// need it); nullptr otherwise.
@@ -102,6 +106,7 @@ class DenseDelassus final : public DelassusOperator {
   void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.block(first, first, n, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
+  std::string storage() const override;
   const Eigen::MatrixXd* dense() const override { return &W_; }
 
  private:
@@ -125,6 +130,8 @@ class CompressedDelassus final : public DelassusOperator {
                     Eigen::VectorXd& u) const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
+  /// With the share of the dense matrix it stores and the largest rank of its blocks.
+  std::string storage() const override;
   const HodlrMatrix* compressed() const override { return &W_; }
   /// Truncated at the first call: only the exact step asks (never the 3D sweeps), and a W0
   /// replaced when the springs follow beta is truncated again only if asked.
@@ -148,6 +155,7 @@ class SparseDelassus final : public DelassusOperator {
   void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
   LocalMatrix block(Eigen::Index first, int n) const override;
   double diagonal_scale() const override { return diagonal_scale_; }
+  std::string storage() const override;
   const Eigen::SparseMatrix<double>& matrix() const { return W_; }
 
  private:

@@ -51,6 +51,7 @@ struct RunResult {
   std::string stopped;              // why the run ended before T (failure, signal); empty: complete
   int nodes = 0, cells = 0, contact_nodes = 0, dofs = 0;
   std::string linear_solver;             // who solved the body's K0: "CHOLMOD", "PETSc MUMPS on 2 processes"
+  std::string flexibility;               // how W0 was stored at the setup (DelassusOperator::storage)
   std::vector<std::string> bodies;       // the mesh's bodies
   std::vector<int> pairs_per_interface;  // contact pairs of each config interface
   double setup_seconds = 0, wall_seconds = 0;  // of this process: a restart's since it restarted
