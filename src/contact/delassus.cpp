@@ -9,6 +9,12 @@ namespace rccm {
 
 namespace {
 
+/// The largest magnitude on a stored (dense or sparse) matrix's diagonal; 0 for no rows.
+template <class Matrix>
+double largest_on_diagonal(const Matrix& W) {
+  return W.rows() > 0 ? W.diagonal().cwiseAbs().maxCoeff() : 0.0;
+}
+
 /// "rows x rows" and the MB of `doubles`.
 std::string shape_and_memory(Eigen::Index rows, double doubles) {
   return std::to_string(rows) + " x " + std::to_string(rows) + " (" + fmt("%.3g", doubles * sizeof(double) / 1e6) + " MB";
@@ -22,7 +28,7 @@ void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& upd
 }
 
 DenseDelassus::DenseDelassus(Eigen::MatrixXd W)
-    : W_(std::move(W)), diagonal_scale_(W_.size() > 0 ? W_.diagonal().cwiseAbs().maxCoeff() : 0.0) {}
+    : W_(std::move(W)), diagonal_scale_(largest_on_diagonal(W_)) {}
 
 std::string DenseDelassus::storage() const { return "dense, " + shape_and_memory(size(), double(W_.size())) + ")"; }
 
@@ -44,9 +50,9 @@ const HodlrMatrix* CompressedDelassus::compressed_preconditioner() const {
 }
 
 std::string CompressedDelassus::storage() const {
-  const double m = double(size());
-  return "compressed (HODLR), " + shape_and_memory(size(), double(W_.stored())) + ", " +
-         fmt("%.0f", 100.0 * double(W_.stored()) / (m * m)) + " % of dense), largest rank " + std::to_string(W_.max_rank());
+  const double m = double(size()), stored = double(W_.stored());
+  return "compressed (HODLR), " + shape_and_memory(size(), stored) + ", " + fmt("%.0f", 100.0 * stored / (m * m)) +
+         " % of dense), largest rank " + std::to_string(W_.max_rank());
 }
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {
@@ -67,7 +73,7 @@ void CompressedDelassus::gauss_seidel(int dim, const std::function<void(int)>& u
 
 SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W)) {
   W_.makeCompressed();
-  diagonal_scale_ = W_.rows() > 0 ? W_.diagonal().cwiseAbs().maxCoeff() : 0.0;
+  diagonal_scale_ = largest_on_diagonal(W_);
 }
 
 std::string SparseDelassus::storage() const {
