@@ -1,6 +1,7 @@
 #include "rccm/la/blas_threads.hpp"
 
 #include <dlfcn.h>
+#include <omp.h>
 
 #include <atomic>
 
@@ -26,6 +27,8 @@ OpenBlas& openblas() {
   return blas;
 }
 
+std::atomic<bool> only_one{false};  // keep_one() was called
+
 }  // namespace
 
 void start() { openblas(); }
@@ -40,7 +43,10 @@ int wide() { return openblas().wide; }
 void keep_one() {
   OpenBlas& b = openblas();
   b.wide = b.set ? 1 : 0;
+  only_one = true;
 }
+
+int products() { return only_one ? 1 : omp_get_max_threads(); }
 
 Wide::Wide() {
   OpenBlas& b = openblas();

@@ -5,6 +5,7 @@
 
 #include <Eigen/SparseCore>
 #include <catch2/catch.hpp>
+#include <omp.h>
 
 #include <vector>
 
@@ -33,6 +34,7 @@ TEST_CASE("The BLAS has one thread outside the wide scopes and its start-up coun
     return;
   }
   CHECK(blas_threads::current() == 1);
+  CHECK(blas_threads::products() == omp_get_max_threads());  // OpenMP's count for rccm's own products
   const int wide = blas_threads::wide();
   REQUIRE(wide >= 1);
   {
@@ -59,4 +61,5 @@ TEST_CASE("The BLAS has one thread outside the wide scopes and its start-up coun
     CHECK(blas_threads::current() == 1);
   }
   CHECK(blas_threads::wide() == 1);
+  CHECK(blas_threads::products() == 1);  // the compressed W0's products too (la/hodlr.cpp)
 }

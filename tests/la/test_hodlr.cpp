@@ -1,7 +1,10 @@
 #include "rccm/la/hodlr.hpp"
 
+#include "rccm/la/blas_threads.hpp"
+
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
+#include <omp.h>
 
 #include <cmath>
 
@@ -231,6 +234,56 @@ TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where
   std::srand(6);
   const Eigen::VectorXd v = Eigen::VectorXd::Random(m);
   CHECK((P.multiply(v) - A * v).norm() <= 100 * relative * scale * v.norm());
+}
+
+TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared among threads are the dense ones", "[hodlr]") {
+  // A surface's kernel (as above): the blocks of the top bisections are large enough to be
+  // shared among the threads (la/hodlr.cpp's threaded_entries, 2^15), in three threads here
+  // so that the shares are uneven. The pass and the product must be the dense ones, and the
+  // same as in one thread to round-off.
+  const int side = 32, m = side * side;
+  Eigen::MatrixXd A(m, m);
+  const auto point = [&](int i) { return Eigen::Vector2d(i % side, i / side); };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + (point(i) - point(j)).norm());
+  A.diagonal().array() += 2.0;
+  const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
+  REQUIRE(P.max_rank() * (m / 2) >= 1 << 15);  // the top blocks are shared
+  std::srand(8);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Random(m), q = Eigen::VectorXd::Random(m);
+  const auto update = [](double y, double x) { return -0.4 * y + 0.1 * x; };
+  // The dense pass: x_i from y_i, then y follows with A's column i.
+  Eigen::VectorXd x_dense = x0, y_dense = A * x0 + q;
+  for (int i = 0; i < m; ++i) {
+    const double old = x_dense[i];
+    x_dense[i] = update(y_dense[i], old);
+    y_dense += A.col(i) * (x_dense[i] - old);
+  }
+  const auto pass = [&](Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    x = x0, y = A * x0 + q;
+    P.gauss_seidel([&](Eigen::Index i) { x[i] = update(y[i], x[i]); }, x, y);
+  };
+  const int threads_before = omp_get_max_threads();
+  Eigen::VectorXd x1, y1, x3, y3;
+  omp_set_num_threads(1);
+  REQUIRE(blas_threads::products() == 1);
+  pass(x1, y1);
+  const Eigen::VectorXd product1 = P.multiply(x0);
+  omp_set_num_threads(3);
+  if (blas_threads::products() != 3)  // keep_one() is for the whole process (tests/la/test_blas_threads.cpp)
+    WARN("an earlier test in this process kept one thread: run this test alone for the shared blocks");
+  pass(x3, y3);
+  const Eigen::VectorXd product3 = P.multiply(x0);
+  omp_set_num_threads(threads_before);
+  const double scale = A.diagonal().maxCoeff();
+  CHECK((x_dense - x0).norm() > 0.1 * x0.norm());  // the pass moved x
+  for (const Eigen::VectorXd* x : {&x1, &x3}) CHECK((*x - x_dense).norm() <= 1e-11 * x_dense.norm());
+  for (const Eigen::VectorXd* y : {&y1, &y3}) CHECK((*y - y_dense).norm() <= 1e-11 * y_dense.norm());
+  CHECK((y3 - A * x3 - q).norm() <= 1e-11 * scale * x3.norm());
+  CHECK((x3 - x1).norm() <= 1e-14 * x1.norm());
+  CHECK((y3 - y1).norm() <= 1e-14 * y1.norm());
+  for (const Eigen::VectorXd* p : {&product1, &product3}) CHECK((*p - A * x0).norm() <= 1e-11 * scale * x0.norm());
+  CHECK((product3 - product1).norm() <= 1e-14 * product1.norm());
 }
 
 TEST_CASE("HODLR: truncated to a looser tolerance the ranks fall and the products stay within it", "[hodlr]") {

@@ -5,7 +5,8 @@
 // wall, the same run in one thread 47-62 s of CPU; docs/PERFORMANCE.md "The BLAS's threads").
 // rccm therefore gives the BLAS one thread, and its own count only inside a Wide scope, around
 // the large work that shares well (a sparse factorization, a block of solves).
-// Without OpenBLAS (another BLAS chosen by Debian's alternatives) all of this does nothing.
+// Without OpenBLAS (another BLAS chosen by Debian's alternatives) all of this but products()
+// does nothing.
 #pragma once
 
 namespace rccm::blas_threads {
@@ -20,9 +21,15 @@ int current();
 /// the cores), or 1 after keep_one().
 int wide();
 
-/// One thread everywhere from now on, Wide scopes included: for several runs at once in one
-/// process (`rccm sweep -j N`), whose scopes would otherwise set the BLAS's threads for each other.
+/// One thread everywhere from now on, Wide scopes and products() included: for several runs at
+/// once in one process (`rccm sweep -j N`), whose scopes would otherwise set the BLAS's threads
+/// for each other, or several processes (mpirun).
 void keep_one();
+
+/// The threads that share rccm's own large matrix-vector products (the compressed W0's blocks
+/// in a Gauss-Seidel sweep, la/hodlr.cpp; through OpenMP): OpenMP's count (OMP_NUM_THREADS or
+/// the cores), or 1 after keep_one().
+int products();
 
 /// Within its lifetime the BLAS has wide() threads; one before and after.
 class Wide {
