@@ -158,8 +158,8 @@ void subtract_coarse(const HodlrMatrix::Node& node, int depth, const Eigen::Matr
 }
 
 /// The entries from which a block's product with a vector is shared among threads: below,
-/// the threads' start and barrier cost more than they save (a 2-core Xeon: a block of 3174 x 414
-/// in two threads 1.5-1.8 times as fast, docs/PERFORMANCE.md "The sweeps in threads").
+/// the threads' start and barrier cost more than they save (the 2116-node peel's W0: a pass
+/// 1.6-1.7 times as fast in two threads, docs/PERFORMANCE.md "The sweeps in threads").
 constexpr Eigen::Index threaded_entries = 1 << 15;
 
 /// [begin, begin + count) of `n` items: thread `t` of `threads`'s share.
