@@ -5,6 +5,7 @@
 #include "rccm/contact/solver_tuning.hpp"
 #include "rccm/base/errors.hpp"
 #include "rccm/base/format.hpp"
+#include "rccm/la/blas_threads.hpp"
 #include "random_problem.hpp"
 
 #include <Eigen/Dense>
@@ -126,12 +127,13 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
   CHECK(P->max_rank() < compressed.compressed()->max_rank());
   CHECK((P->multiply(y) - W * y).norm() <= 10 * tuning::hodlr_preconditioner_accuracy * plain.diagonal_scale() * y.norm());
   // The run report's line: the dense W0's m^2 doubles, the compressed one's stored doubles
-  // and their share of m^2, its largest rank.
+  // and their share of m^2, its largest rank, the threads of its large blocks.
   CHECK(plain.storage() == "dense, 300 x 300 (0.72 MB)");  // 90 000 doubles
   const HodlrMatrix& H = *compressed.compressed();
   CHECK(compressed.storage() == "compressed (HODLR), 300 x 300 (" + fmt("%.3g", 8e-6 * double(H.stored())) + " MB, " +
                                     fmt("%.0f", 100.0 * double(H.stored()) / (m * m)) + " % of dense), largest rank " +
-                                    std::to_string(H.max_rank()));
+                                    std::to_string(H.max_rank()) + ", its large blocks in " +
+                                    std::to_string(blas_threads::products()) + " thread(s)");
 }
 
 TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the dense one", "[delassus]") {

@@ -42,7 +42,8 @@ class DelassusOperator {
   /// The largest magnitude on the diagonal (a scale for "no flexibility").
   virtual double diagonal_scale() const = 0;
 
-  /// How W0 is stored and its memory, for the run report: "dense, 198 x 198 (0.3 MB)".
+  /// How W0 is stored and its memory, for the run report: "dense, 198 x 198 (0.3 MB)"; a
+  /// compressed W0 also names the threads of its large blocks' products (la/hodlr.cpp).
   virtual std::string storage() const = 0;
 
   /// The matrix itself when it is stored dense (the exact active-set step and the plain form
