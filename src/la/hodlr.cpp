@@ -157,10 +157,11 @@ void subtract_coarse(const HodlrMatrix::Node& node, int depth, const Eigen::Matr
   subtract_coarse(b, depth - 1, X, Y);
 }
 
-/// The entries from which a block's product with a vector is shared among threads: below,
-/// the threads' start and barrier cost more than they save (the 2116-node peel's W0: a pass
-/// 1.6-1.7 times as fast in two threads, docs/PERFORMANCE.md "The sweeps in threads").
-constexpr Eigen::Index threaded_entries = 1 << 15;
+/// The entries of a block each thread of its product with a vector gets at least: fewer, and
+/// the threads' start and barrier cost more than they save (blocks of 2^15 entries and more in
+/// two threads: the 2116-node peel's W0 a pass 1.6-1.7 times as fast, docs/PERFORMANCE.md "The
+/// sweeps in threads"); many cores share a large block only.
+constexpr Eigen::Index entries_per_thread = 1 << 14;
 
 /// [begin, begin + count) of `n` items: thread `t` of `threads`'s share.
 std::pair<Eigen::Index, Eigen::Index> share(Eigen::Index n, int t, int threads) {
@@ -174,8 +175,10 @@ std::pair<Eigen::Index, Eigen::Index> share(Eigen::Index n, int t, int threads) 
 template <class Columns>
 void add_block_product(const Eigen::MatrixXd& U, const Eigen::MatrixXd& V, const Eigen::Ref<const Columns>& x,
                        Eigen::Ref<Columns> y) {
-  const int threads = Columns::ColsAtCompileTime == 1 && U.size() >= threaded_entries ? blas_threads::products() : 1;
-  if (threads == 1) {
+  const int threads = Columns::ColsAtCompileTime == 1
+                          ? int(std::min<Eigen::Index>(blas_threads::products(), U.size() / entries_per_thread))
+                          : 1;
+  if (threads <= 1) {
     y.noalias() += U * (V.transpose() * x);
     return;
   }

@@ -238,8 +238,8 @@ TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where
 
 TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared among threads are the dense ones", "[hodlr]") {
   // A surface's kernel (as above): the blocks of the top bisections are large enough to be
-  // shared among the threads (la/hodlr.cpp's threaded_entries, 2^15), in three threads here
-  // so that the shares are uneven. The pass and the product must be the dense ones, and the
+  // shared among three threads (la/hodlr.cpp: 2^14 entries each at least), so that the shares
+  // are uneven. The pass and the product must be the dense ones, and the
   // same as in one thread to round-off.
   const int side = 32, m = side * side;
   Eigen::MatrixXd A(m, m);
@@ -248,7 +248,7 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
     for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + (point(i) - point(j)).norm());
   A.diagonal().array() += 2.0;
   const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
-  REQUIRE(P.max_rank() * (m / 2) >= 1 << 15);  // the top blocks are shared
+  REQUIRE(P.max_rank() * (m / 2) >= 3 << 14);  // the top blocks are shared by three threads
   std::srand(8);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Random(m), q = Eigen::VectorXd::Random(m);
   const auto update = [](double y, double x) { return -0.4 * y + 0.1 * x; };
