@@ -28,7 +28,7 @@ void keep_one();
 
 /// The threads that share rccm's own large matrix-vector products (the compressed W0's blocks
 /// in a Gauss-Seidel sweep, la/hodlr.cpp; through OpenMP): OpenMP's count (OMP_NUM_THREADS or
-/// the cores), or 1 after keep_one().
+/// the cores) but no more than the cores, or 1 after keep_one().
 int products();
 
 /// Within its lifetime the BLAS has wide() threads; one before and after.
