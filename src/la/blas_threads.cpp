@@ -48,8 +48,12 @@ void keep_one() {
 }
 
 // More threads than cores spin against each other (OMP_NUM_THREADS=64 on 2 cores: the 625-node
-// peel's contact solves 12 times as slow): at most the cores.
-int products() { return only_one ? 1 : std::max(1, std::min(omp_get_max_threads(), omp_get_num_procs())); }
+// peel's contact solves 12 times as slow): at most the cores, counted once (omp_get_num_procs
+// asks the kernel for the affinity at each call, and a sweep asks for each of W0's blocks).
+int products() {
+  static const int cores = omp_get_num_procs();
+  return only_one ? 1 : std::max(1, std::min(omp_get_max_threads(), cores));
+}
 
 Wide::Wide() {
   OpenBlas& b = openblas();
