@@ -23,6 +23,19 @@ Eigen::MatrixXd kernel_matrix(int m) {
   return A;
 }
 
+/// Points of a side x side grid in row order (each bisection halves the rows: strips as wide
+/// as the grid), a smooth kernel between them, plus a diagonal: as on an interface surface, the
+/// blocks' ranks are high and fall slowly from level to level.
+Eigen::MatrixXd surface_kernel(int side) {
+  const int m = side * side;
+  Eigen::MatrixXd A(m, m);
+  const auto point = [&](int i) { return Eigen::Vector2d(i % side, i / side); };
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + (point(i) - point(j)).norm());
+  A.diagonal().array() += 2.0;
+  return A;
+}
+
 }  // namespace
 
 TEST_CASE("HODLR: products and solves agree with the dense matrix to the compression tolerance", "[hodlr]") {
@@ -208,18 +221,12 @@ TEST_CASE("HODLR: a singular diagonal block gives a solution that is not finite"
 }
 
 TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where the ranks are high", "[hodlr]") {
-  // Points of a square grid in row order (each bisection halves the rows: strips as wide as the
-  // grid), a smooth kernel between them: as on an interface surface, the blocks' ranks are high
-  // and fall slowly from level to level. Each
-  // level's first round of probes is half as wide as the level above's basis, so the products
-  // come in far fewer blocks than rounds of 8 probes would take (a block of products is a
-  // sparse solve of the whole body), without more columns in all.
-  const int side = 32, m = side * side;
-  Eigen::MatrixXd A(m, m);
-  const auto x = [&](int i) { return Eigen::Vector2d(i % side, i / side); };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + (x(i) - x(j)).norm());
-  A.diagonal().array() += 2.0;
+  // A surface's kernel (surface_kernel): each level's first round of probes is half as wide as
+  // the level above's basis, so the products come in far fewer blocks than rounds of 8 probes
+  // would take (a block of products is a sparse solve of the whole body), without more columns
+  // in all.
+  const int m = 32 * 32;
+  const Eigen::MatrixXd A = surface_kernel(32);
   Eigen::Index columns = 0, blocks = 0;
   const auto products = [&](const Eigen::MatrixXd& X) {
     columns += X.cols(), ++blocks;
@@ -238,16 +245,12 @@ TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where
 }
 
 TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared among threads are the dense ones", "[hodlr]") {
-  // A surface's kernel (as above): the blocks of the top bisections are large enough to be
-  // shared among three threads (la/hodlr.cpp: 2^14 entries each at least; two on a 2-core
+  // A surface's kernel (surface_kernel): the blocks of the top bisections are large enough to
+  // be shared among three threads (la/hodlr.cpp: 2^14 entries each at least; two on a 2-core
   // machine, as no more threads than cores share them). The pass and the product must be the
   // dense ones, and the same as in one thread to round-off.
-  const int side = 32, m = side * side;
-  Eigen::MatrixXd A(m, m);
-  const auto point = [&](int i) { return Eigen::Vector2d(i % side, i / side); };
-  for (int i = 0; i < m; ++i)
-    for (int j = 0; j < m; ++j) A(i, j) = 1.0 / (1.0 + (point(i) - point(j)).norm());
-  A.diagonal().array() += 2.0;
+  const int m = 32 * 32;
+  const Eigen::MatrixXd A = surface_kernel(32);
   const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
   REQUIRE(P.max_rank() * (m / 2) >= 3 << 14);  // the top blocks are shared by three threads
   std::srand(8);
