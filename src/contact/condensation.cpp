@@ -20,22 +20,24 @@ Eigen::MatrixXd unit_responses(const ElasticProblem& body, const std::vector<Loa
   return body.solve(f, ud);
 }
 
-std::unique_ptr<DelassusOperator> flexibility(const ElasticProblem& body, const Interface& interface, bool compress) {
-  if (!compress) return std::make_unique<DenseDelassus>(body.flexibility(interface.P));
+std::unique_ptr<DelassusOperator> flexibility(const ElasticProblem& body, const Interface& interface, W0Storage storage) {
+  if (!storage.compressed) return std::make_unique<DenseDelassus>(body.flexibility(interface.P));
   const auto products = [&](const Eigen::MatrixXd& Y) { return body.flexibility_products(interface.P, Y); };
-  return std::make_unique<CompressedDelassus>(HodlrMatrix::symmetric(
-      interface.P.rows(), products, tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim));
+  return std::make_unique<CompressedDelassus>(
+      HodlrMatrix::symmetric(interface.P.rows(), products, tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim),
+      storage.single_passes);
 }
 
 }  // namespace
 
 Condensation::Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
-                           bool compress_W0)
+                           W0Storage storage)
     : body_(body),
       interface_(interface),
       U_(unit_responses(body, loads, interface.P.cols())),
       Q_(interface.P * U_),
-      W0_(flexibility(body, interface, compress_W0)) {
+      storage_(storage),
+      W0_(flexibility(body, interface, storage)) {
   for (const LoadCase& lc : loads) amplitudes_.push_back(lc.amplitude);
 }
 
@@ -89,7 +91,7 @@ void Condensation::change_springs(const Eigen::VectorXd& dD) {
   } else {
     HodlrMatrix Wc = W0_->compressed()->plus(AG, A, tuning::hodlr_accuracy);
     W0_.reset();
-    W0_ = std::make_unique<CompressedDelassus>(std::move(Wc));
+    W0_ = std::make_unique<CompressedDelassus>(std::move(Wc), storage_.single_passes);
   }
   if (shift_.size() == 0) shift_ = Eigen::VectorXd::Zero(m);
   shift_ += dD;
