@@ -79,7 +79,6 @@ class BipotentialSolver::Iteration {
   void sweep() {
     Rbar_in_ = s.Rbar;
     y_in_ = s.y;
-    u_replaced_ = false;
     const bool gauss_seidel = params_.form == SweepForm::GaussSeidel;
     const double noise = noise_floor();
     const double F_old = force_level(pb_, s.Rbar, s.u);
@@ -112,12 +111,11 @@ class BipotentialSolver::Iteration {
   /// tuning::refresh_interval sweeps (Jacobi: every sweep); in between, Gauss-Seidel's
   /// incremental u differs from it by the round-off of fewer sweeps, far below the tolerance,
   /// so convergence is judged on it without another product (a tenth of a 3D solve), unless
-  /// extrapolations with large weights may have amplified that round-off, or the passes
-  /// rounded u to single precision (max_u_rounding).
+  /// extrapolations with large weights may have amplified that round-off (mixed_u_weight).
   bool converged_after_sweep() {
     if (params_.form == SweepForm::Jacobi || s.iterations % tuning::refresh_interval == 0) refresh();
     if (!criteria_hold()) return false;
-    if (u_weight_ * pb_.W0->pass_rounding() > tuning::max_u_rounding) {
+    if (u_weight_ > tuning::mixed_u_weight) {
       refresh();
       if (!criteria_hold()) return false;
     }
@@ -125,12 +123,6 @@ class BipotentialSolver::Iteration {
     s.Rbar = R_projected_;  // in the cone by construction (y - E u differs by round-off)
     return true;
   }
-
-  /// Whether the check after the last sweep replaced a u rounded by single-precision passes
-  /// with a fresh product: the sweeps' u's in Anderson's history are then not W0 y + q0 to
-  /// round-off, and their secants would carry the rounding into the extrapolation (the
-  /// extrapolated solves stalled until the plain sweeps took over): it starts again.
-  bool u_replaced() const { return u_replaced_; }
 
   /// The verifying pass found the solution: its branches and projections are the result.
   bool verified() {
@@ -180,7 +172,6 @@ class BipotentialSolver::Iteration {
     pb_.W0->multiply(s.y, s.u);
     s.u += pb_.q0;
     u_weight_ = 1;
-    u_replaced_ = rounded_passes_;
   }
   /// The verifying pass at `force` = force_level and `floor` = noise_floor() / tolerance.
   void verify(double force, double floor) {
@@ -212,8 +203,6 @@ class BipotentialSolver::Iteration {
   Verification& check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
   double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
-  const bool rounded_passes_ = pb_.W0->pass_rounding() > tuning::max_u_rounding;  // u rounded beyond judging by the passes
-  bool u_replaced_ = false;  // by a fresh product in the check after the last sweep (u_replaced)
   const bool cold_;      // started from nothing (no Rbar given)
 };
 
@@ -291,7 +280,6 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
   for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
     it.sweep();
     if (it.converged_after_sweep()) break;
-    if (it.u_replaced()) anderson.restart(gauss_seidel ? params_.anderson : 0);
     if (!exact_step_due()) {
       if (s.iterations <= tuning::anderson_sweeps) it.accelerate(anderson);
       continue;

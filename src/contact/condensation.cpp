@@ -20,24 +20,22 @@ Eigen::MatrixXd unit_responses(const ElasticProblem& body, const std::vector<Loa
   return body.solve(f, ud);
 }
 
-std::unique_ptr<DelassusOperator> flexibility(const ElasticProblem& body, const Interface& interface, W0Storage storage) {
-  if (!storage.compressed) return std::make_unique<DenseDelassus>(body.flexibility(interface.P));
+std::unique_ptr<DelassusOperator> flexibility(const ElasticProblem& body, const Interface& interface, bool compress) {
+  if (!compress) return std::make_unique<DenseDelassus>(body.flexibility(interface.P));
   const auto products = [&](const Eigen::MatrixXd& Y) { return body.flexibility_products(interface.P, Y); };
-  return std::make_unique<CompressedDelassus>(
-      HodlrMatrix::symmetric(interface.P.rows(), products, tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim),
-      storage.single_passes);
+  return std::make_unique<CompressedDelassus>(HodlrMatrix::symmetric(
+      interface.P.rows(), products, tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim));
 }
 
 }  // namespace
 
 Condensation::Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
-                           W0Storage storage)
+                           bool compress_W0)
     : body_(body),
       interface_(interface),
       U_(unit_responses(body, loads, interface.P.cols())),
       Q_(interface.P * U_),
-      storage_(storage),
-      W0_(flexibility(body, interface, storage)) {
+      W0_(flexibility(body, interface, compress_W0)) {
   for (const LoadCase& lc : loads) amplitudes_.push_back(lc.amplitude);
 }
 
@@ -91,7 +89,7 @@ void Condensation::change_springs(const Eigen::VectorXd& dD) {
   } else {
     HodlrMatrix Wc = W0_->compressed()->plus(AG, A, tuning::hodlr_accuracy);
     W0_.reset();
-    W0_ = std::make_unique<CompressedDelassus>(std::move(Wc), storage_.single_passes);
+    W0_ = std::make_unique<CompressedDelassus>(std::move(Wc));
   }
   if (shift_.size() == 0) shift_ = Eigen::VectorXd::Zero(m);
   shift_ += dD;

@@ -43,14 +43,7 @@ void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eige
   add_columns<3>(W_, first, dy, u);
 }
 
-CompressedDelassus::CompressedDelassus(HodlrMatrix W, bool single_passes)
-    : W_(std::move(W)), diagonal_scale_(W_.diagonal_scale()) {
-  if (single_passes) W_.round_passes_to_single();
-}
-
-double CompressedDelassus::pass_rounding() const {
-  return W_.passes_in_single() ? double(std::numeric_limits<float>::epsilon()) : std::numeric_limits<double>::epsilon();
-}
+CompressedDelassus::CompressedDelassus(HodlrMatrix W) : W_(std::move(W)), diagonal_scale_(W_.diagonal_scale()) {}
 
 const HodlrMatrix* CompressedDelassus::compressed_preconditioner() const {
   if (!preconditioner_) preconditioner_.emplace(W_.truncated(tuning::hodlr_preconditioner_accuracy));
@@ -61,8 +54,7 @@ std::string CompressedDelassus::storage() const {
   const double m = double(size()), stored = double(W_.stored());
   return "compressed (HODLR), " + shape_and_memory(size(), stored) + ", " + fmt("%.0f", 100.0 * stored / (m * m)) +
          " % of dense), largest rank " + std::to_string(W_.max_rank()) + ", its large blocks in " +
-         std::to_string(blas_threads::products()) + " thread(s)" +
-         (W_.passes_in_single() ? ", swept in single precision" : "");
+         std::to_string(blas_threads::products()) + " thread(s)";
 }
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {

@@ -730,7 +730,7 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
   r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "anderson", "rho", "relaxation",
-              "active_set", "active_set_max_nodes", "compressed_min_nodes", "sweep_precision", "springs_follow_beta", "linear", "linear_tolerance"});
+              "active_set", "active_set_max_nodes", "compressed_min_nodes", "springs_follow_beta", "linear", "linear_tolerance"});
   S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
   S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
   if (s->exists("over_relaxation"))
@@ -758,7 +758,6 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   S.compressed_min_nodes = r.integer(*s, "compressed_min_nodes", S.compressed_min_nodes);
   if (s->exists("compressed_min_nodes"))
     r.check(S.compressed_min_nodes >= 0, (*s)["compressed_min_nodes"], "must be >= 0", S.compressed_min_nodes);
-  S.sweep_precision = static_cast<SweepPrecision>(r.choice(*s, "sweep_precision", {"single", "double"}, 0));
   // "auto" read as the solver it stands for in this run: who reads solver.linear_tolerance
   // (unused_settings) follows the solver that runs, not the word.
   S.linear.kind = chosen_linear_solver(static_cast<LinearSolver>(r.choice(*s, "linear", {"auto", "cholmod", "mumps", "cg-gamg"}, 0)));

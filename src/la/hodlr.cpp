@@ -11,7 +11,6 @@
 #include <algorithm>
 #include <limits>
 #include <random>
-#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -27,11 +26,6 @@ struct HodlrMatrix::Node {
   bool mirrored = false;
   const Eigen::MatrixXd& U12() const { return mirrored ? V21 : U12_own; }
   const Eigen::MatrixXd& V12() const { return mirrored ? U21 : V12_own; }
-  // The same factors rounded to single precision for the Gauss-Seidel passes
-  // (HodlrMatrix::round_passes_to_single): half the bytes a pass streams.
-  Eigen::MatrixXf U21_single, V21_single, U12_single_own, V12_single_own;
-  const Eigen::MatrixXf& U12_single() const { return mirrored ? V21_single : U12_single_own; }
-  const Eigen::MatrixXf& V12_single() const { return mirrored ? U21_single : V12_single_own; }
   bool leaf() const { return !first; }
 };
 
@@ -177,31 +171,26 @@ std::pair<Eigen::Index, Eigen::Index> share(Eigen::Index n, int t, int threads) 
 
 /// y += U (V^T x), a block's product with a vector (a sweep streams the blocks from memory, so
 /// a large one is read by blas_threads::products() threads: V^T x by columns, then U z by rows),
-/// or with a block of columns (BLAS-3 speed already). Factors in single precision: x rounded
-/// to it, the product added to y in double.
-template <class Columns, class Factor>
-void add_block_product(const Factor& U, const Factor& V, const Eigen::Ref<const Columns>& x, Eigen::Ref<Columns> y) {
-  using Scalar = typename Factor::Scalar;
-  using Vector = Eigen::Matrix<Scalar, Eigen::Dynamic, 1>;
+/// or with a block of columns (BLAS-3 speed already).
+template <class Columns>
+void add_block_product(const Eigen::MatrixXd& U, const Eigen::MatrixXd& V, const Eigen::Ref<const Columns>& x,
+                       Eigen::Ref<Columns> y) {
   const int threads = Columns::ColsAtCompileTime == 1
                           ? int(std::min<Eigen::Index>(blas_threads::products(), U.size() / entries_per_thread))
                           : 1;
-  if constexpr (std::is_same_v<Scalar, double>) {
-    if (threads <= 1) {
-      y.noalias() += U * (V.transpose() * x);
-      return;
-    }
+  if (threads <= 1) {
+    y.noalias() += U * (V.transpose() * x);
+    return;
   }
-  const Vector xs = x.template cast<Scalar>();
-  Vector z(V.cols());
-#pragma omp parallel num_threads(std::max(threads, 1))
+  Columns z(V.cols(), 1);
+#pragma omp parallel num_threads(threads)
   {
     const int t = omp_get_thread_num(), n = omp_get_num_threads();
     const auto [c, nc] = share(V.cols(), t, n);
-    z.segment(c, nc).noalias() = V.middleCols(c, nc).transpose() * xs;
+    z.middleRows(c, nc).noalias() = V.middleCols(c, nc).transpose() * x;
 #pragma omp barrier
     const auto [r, nr] = share(U.rows(), t, n);
-    y.middleRows(r, nr) += (U.middleRows(r, nr) * z).template cast<double>();
+    y.middleRows(r, nr).noalias() += U.middleRows(r, nr) * z;
   }
 }
 
@@ -237,7 +226,7 @@ Eigen::MatrixXd beside(const Eigen::MatrixXd& A, const Eigen::Ref<const Eigen::M
 }
 
 void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void(Eigen::Index)>& visit,
-                  const Eigen::VectorXd& x, Eigen::VectorXd& y, bool single) {
+                  const Eigen::VectorXd& x, Eigen::VectorXd& y) {
   const Eigen::Index n = node.end - node.begin;
   if (node.leaf()) {
     Eigen::VectorXd old(g), change(g);  // one allocation per leaf, not per granule
@@ -252,19 +241,13 @@ void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void
   const HodlrMatrix::Node &a = *node.first, &b = *node.second;
   const Eigen::Index n1 = a.end - a.begin, n2 = b.end - b.begin;
   Eigen::VectorXd dx1 = -x.segment(a.begin, n1);
-  gauss_seidel(a, g, visit, x, y, single);
+  gauss_seidel(a, g, visit, x, y);
   dx1 += x.segment(a.begin, n1);
-  if (single)
-    add_block_product<Eigen::VectorXd>(node.U21_single, node.V21_single, dx1, y.segment(b.begin, n2));
-  else
-    add_block_product<Eigen::VectorXd>(node.U21, node.V21, dx1, y.segment(b.begin, n2));
+  add_block_product<Eigen::VectorXd>(node.U21, node.V21, dx1, y.segment(b.begin, n2));
   Eigen::VectorXd dx2 = -x.segment(b.begin, n2);
-  gauss_seidel(b, g, visit, x, y, single);
+  gauss_seidel(b, g, visit, x, y);
   dx2 += x.segment(b.begin, n2);
-  if (single)
-    add_block_product<Eigen::VectorXd>(node.U12_single(), node.V12_single(), dx2, y.segment(a.begin, n1));
-  else
-    add_block_product<Eigen::VectorXd>(node.U12(), node.V12(), dx2, y.segment(a.begin, n1));
+  add_block_product<Eigen::VectorXd>(node.U12(), node.V12(), dx2, y.segment(a.begin, n1));
 }
 
 /// Rows [begin, begin + M.rows()) of blockdiag(C) M, C's blocks g x g side by side.
@@ -442,15 +425,7 @@ Eigen::MatrixXd HodlrMatrix::multiply_block(const Eigen::Ref<const Eigen::Matrix
 
 void HodlrMatrix::gauss_seidel(const std::function<void(Eigen::Index)>& visit, const Eigen::VectorXd& x,
                                Eigen::VectorXd& y) const {
-  rccm::gauss_seidel(*root_, granule_, visit, x, y, single_);
-}
-
-void HodlrMatrix::round_passes_to_single() {
-  visit(*root_, [](Node& n) {
-    n.U21_single = n.U21.cast<float>(), n.V21_single = n.V21.cast<float>();
-    n.U12_single_own = n.U12_own.cast<float>(), n.V12_single_own = n.V12_own.cast<float>();
-  });
-  single_ = true;
+  rccm::gauss_seidel(*root_, granule_, visit, x, y);
 }
 
 HodlrMatrix HodlrMatrix::rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const {

@@ -186,7 +186,6 @@ Model::Model(const Config& cfg, Mesh mesh)
       for (int node : {c.node, c.opposite})
         for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs_.push_back(mesh_.dof(node, x));
   follow_beta_ = cfg.solver.springs_follow_beta;
-  single_passes_ = cfg.solver.sweep_precision == SweepPrecision::Single;
   linear_ = cfg.solver.linear;
   D1_ = interface_.spring_stiffness();
   g0_.resize(interface_.size());
@@ -226,7 +225,7 @@ void Model::condense(const Eigen::VectorXd& beta) {
     condensation_.reset();
     body_.reset();
     body_ = std::make_unique<ElasticProblem>(K_, interface_.springs(w, w), supports_, interface_dofs_, linear_);
-    condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, W0Storage{compress_W0_, single_passes_});
+    condensation_ = std::make_unique<Condensation>(*body_, interface_, loads_, compress_W0_);
     forms_ = std::make_unique<BodyForms>(*condensation_, K_, interface_, loads_, free_, mesh_, probes_);
   }
   springs_beta_ = beta;

@@ -102,16 +102,13 @@ TEST_CASE("warm starts: the exact-first step follows a drifting problem as plain
 TEST_CASE("3D warm starts: exact steps with turning slip directions agree with plain Gauss-Seidel, dense and compressed W0",
           "[solver]") {
   // As above with 3D pairs (slip directions on the circle, most pairs sliding in the hard
-  // family), on the dense W0 and on the same W0 compressed (la/hodlr.hpp, leaves of 4 pairs),
-  // swept in double and in single precision: the exact step's slide rows fix a direction,
-  // whose turn the refinement absorbs; the single passes' rounding of u is judged on a fresh u.
+  // family), on the dense W0 and on the same W0 compressed (la/hodlr.hpp, leaves of 4 pairs):
+  // the exact step's slide rows fix a direction, whose turn the refinement absorbs.
   std::mt19937 gen(19);
   for (int trial = 0; trial < 8; ++trial) {
     RandomProblem rp(12 + 3 * trial, 3, trial % 2 ? Family::Hard : Family::Mild, true, gen);
-    const HodlrMatrix H(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 12, 3);
-    const CompressedDelassus compressed(H.truncated(1e-15), false), single(H.truncated(1e-15), true);
-    for (const DelassusOperator* W0 : {static_cast<const DelassusOperator*>(&rp.W), static_cast<const DelassusOperator*>(&compressed),
-                                       static_cast<const DelassusOperator*>(&single)}) {
+    const CompressedDelassus compressed{HodlrMatrix(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 12, 3)};
+    for (const DelassusOperator* W0 : {static_cast<const DelassusOperator*>(&rp.W), static_cast<const DelassusOperator*>(&compressed)}) {
       ContactProblem pb = rp.pb;
       pb.W0 = W0;
       BipotentialSolver warm(params(SweepForm::GaussSeidel, true));
@@ -122,7 +119,7 @@ TEST_CASE("3D warm starts: exact steps with turning slip directions agree with p
         rccm::testing::drift(pb, 1.0, gen);
         const ContactSolution s = warm.solve(pb, previous.Rbar, previous.u);
         const ContactSolution reference = BipotentialSolver(plain_sweeps()).solve(pb, {}, {});
-        INFO("trial " << trial << (W0 == &compressed ? " compressed" : W0 == &single ? " single" : " dense") << " step " << step);
+        INFO("trial " << trial << (W0 == &compressed ? " compressed" : " dense") << " step " << step);
         REQUIRE(s.converged);
         REQUIRE(reference.converged);
         rccm::testing::require_solution(pb, s);
@@ -139,43 +136,32 @@ TEST_CASE("Anderson-accelerated sweeps solve what plain sweeps solve, in fewer s
           "[solver]") {
   // Sweeps alone (no exact step), extrapolated from the last 5 (solver.anderson, the
   // default) against the plain sweeps, on the hard family (most pairs sliding, every pair
-  // coupled to every other: where the plain sweeps are slow) and the mild one. Swept in
-  // single precision, the extrapolation starts again where a fresh u replaces the rounded one,
-  // and takes a few more sweeps than in double, not the plain sweeps' count.
+  // coupled to every other: where the plain sweeps are slow) and the mild one.
   std::mt19937 gen(23);
-  long sweeps_plain = 0, sweeps_mixed = 0, sweeps_single_mixed = 0, sweeps_double_mixed = 0;
+  long sweeps_plain = 0, sweeps_mixed = 0;
   for (int dim : {2, 3})
     for (int trial = 0; trial < 8; ++trial) {
       RandomProblem rp(10 + 4 * trial, dim, trial % 4 ? Family::Hard : Family::Mild, trial % 2 == 1, gen);
-      const HodlrMatrix H(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 4 * dim, dim);
-      const CompressedDelassus compressed(H.truncated(1e-15), false), single(H.truncated(1e-15), true);
-      for (const DelassusOperator* W0 : {static_cast<const DelassusOperator*>(&rp.W), static_cast<const DelassusOperator*>(&compressed),
-                                         static_cast<const DelassusOperator*>(&single)}) {
+      const CompressedDelassus compressed{HodlrMatrix(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 4 * dim, dim)};
+      for (const DelassusOperator* W0 : {static_cast<const DelassusOperator*>(&rp.W), static_cast<const DelassusOperator*>(&compressed)}) {
         ContactProblem pb = rp.pb;
         pb.W0 = W0;
         SolverParams accelerated = plain_sweeps();
         accelerated.anderson = 5;
         const ContactSolution mixed = BipotentialSolver(accelerated).solve(pb, {}, {});
         const ContactSolution plain = BipotentialSolver(plain_sweeps()).solve(pb, {}, {});
-        INFO("dim " << dim << " trial " << trial << (W0 == &compressed ? " compressed" : W0 == &single ? " single" : " dense") << ": sweeps "
+        INFO("dim " << dim << " trial " << trial << (W0 == &compressed ? " compressed" : " dense") << ": sweeps "
                     << mixed.iterations << " mixed, " << plain.iterations << " plain");
         REQUIRE(mixed.converged);
         REQUIRE(plain.converged);
         rccm::testing::require_solution(pb, mixed);
         REQUIRE((mixed.Rbar - plain.Rbar).norm() <= 1e-8 * (1 + plain.Rbar.norm()));
-        if (W0 == &single) {
-          sweeps_single_mixed += mixed.iterations;
-          continue;
-        }
-        if (W0 == &compressed) sweeps_double_mixed += mixed.iterations;
         sweeps_plain += plain.iterations;
         sweeps_mixed += mixed.iterations;
       }
     }
-  INFO("sweeps in all: " << sweeps_mixed << " mixed, " << sweeps_plain << " plain; compressed W0 " << sweeps_double_mixed
-                         << " mixed in double, " << sweeps_single_mixed << " in single");
+  INFO("sweeps in all: " << sweeps_mixed << " mixed, " << sweeps_plain << " plain");
   CHECK(3 * sweeps_mixed < 2 * sweeps_plain);  // 558 against 938 when written
-  CHECK(4 * sweeps_single_mixed < 5 * sweeps_double_mixed);  // 312 against 279 when written
 }
 
 TEST_CASE("the exact step's rows: a slide direction that turned a little keeps its factorized rows", "[solver]") {

@@ -81,10 +81,8 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
   for (int a = 0; a < m; ++a)
     for (int b = 0; b < m; ++b) W(a, b) = (a % 2 == b % 2 ? 1.0 : 0.3) / (1.0 + std::abs(a / 2 - b / 2) / 4.0);
   const DenseDelassus plain{W};
-  const auto compression = [&] {
-    return HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(W * X); }, 1e-13, 64, 2);
-  };
-  const CompressedDelassus compressed(compression(), false), single(compression(), true);
+  const CompressedDelassus compressed{
+      HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(W * X); }, 1e-13, 64, 2)};
   REQUIRE(plain.compressed() == nullptr);
   REQUIRE(compressed.compressed() != nullptr);
   CHECK(compressed.dense() == nullptr);
@@ -121,14 +119,6 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
   CHECK((ucompressed - upass).norm() <= 1e-11 * upass.norm());
   CHECK((upass - W * yp - q).norm() <= 1e-12 * upass.norm());
   CHECK((ucompressed - W * yc - q).norm() <= 1e-12 * ucompressed.norm());
-  // Swept in single precision: the same pass to single's rounding, which the solvers are told.
-  Eigen::VectorXd ys = y, usingle = W * y + q;
-  pass(single, ys, usingle);
-  CHECK((ys - yp).norm() <= 1e-6 * yp.norm());
-  CHECK((usingle - W * ys - q).norm() <= 1e-6 * usingle.norm());
-  CHECK(plain.pass_rounding() == std::numeric_limits<double>::epsilon());
-  CHECK(compressed.pass_rounding() == std::numeric_limits<double>::epsilon());
-  CHECK(single.pass_rounding() == std::numeric_limits<float>::epsilon());
   // The exact step's preconditioner: W0 truncated to tuning::hodlr_preconditioner_accuracy of
   // its diagonal (lower ranks), made at the first call and kept.
   const HodlrMatrix* P = compressed.compressed_preconditioner();
@@ -144,7 +134,6 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
                                     fmt("%.0f", 100.0 * double(H.stored()) / (m * m)) + " % of dense), largest rank " +
                                     std::to_string(H.max_rank()) + ", its large blocks in " +
                                     std::to_string(blas_threads::products()) + " thread(s)");
-  CHECK(single.storage() == compressed.storage() + ", swept in single precision");
 }
 
 TEST_CASE("The bipotential solver on a sparse W0: the solution it finds on the dense one", "[delassus]") {

@@ -36,28 +36,6 @@ Eigen::MatrixXd surface_kernel(int side) {
   return A;
 }
 
-/// The Gauss-Seidel passes of the tests below: x_i from y_i, and y = A x + q kept.
-double pass_update(double y, double x) { return -0.4 * y + 0.1 * x; }
-
-/// The dense pass from x0: x_i from y_i, then y follows with A's column i. Returns x, y.
-std::pair<Eigen::VectorXd, Eigen::VectorXd> dense_pass(const Eigen::MatrixXd& A, const Eigen::VectorXd& x0,
-                                                       const Eigen::VectorXd& q) {
-  Eigen::VectorXd x = x0, y = A * x0 + q;
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    const double old = x[i];
-    x[i] = pass_update(y[i], old);
-    y += A.col(i) * (x[i] - old);
-  }
-  return {x, y};
-}
-
-/// The pass through P's hierarchy from x0.
-void hodlr_pass(const HodlrMatrix& P, const Eigen::MatrixXd& A, const Eigen::VectorXd& x0, const Eigen::VectorXd& q,
-                Eigen::VectorXd& x, Eigen::VectorXd& y) {
-  x = x0, y = A * x0 + q;
-  P.gauss_seidel([&](Eigen::Index i) { x[i] = pass_update(y[i], x[i]); }, x, y);
-}
-
 }  // namespace
 
 TEST_CASE("HODLR: products and solves agree with the dense matrix to the compression tolerance", "[hodlr]") {
@@ -277,8 +255,18 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
   REQUIRE(P.max_rank() * (m / 2) >= 3 << 14);  // the top blocks are shared by three threads
   std::srand(8);
   const Eigen::VectorXd x0 = Eigen::VectorXd::Random(m), q = Eigen::VectorXd::Random(m);
-  const auto [x_dense, y_dense] = dense_pass(A, x0, q);
-  const auto pass = [&](Eigen::VectorXd& x, Eigen::VectorXd& y) { hodlr_pass(P, A, x0, q, x, y); };
+  const auto update = [](double y, double x) { return -0.4 * y + 0.1 * x; };
+  // The dense pass: x_i from y_i, then y follows with A's column i.
+  Eigen::VectorXd x_dense = x0, y_dense = A * x0 + q;
+  for (int i = 0; i < m; ++i) {
+    const double old = x_dense[i];
+    x_dense[i] = update(y_dense[i], old);
+    y_dense += A.col(i) * (x_dense[i] - old);
+  }
+  const auto pass = [&](Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    x = x0, y = A * x0 + q;
+    P.gauss_seidel([&](Eigen::Index i) { x[i] = update(y[i], x[i]); }, x, y);
+  };
   const int threads_before = omp_get_max_threads();
   Eigen::VectorXd x1, y1, x3, y3;
   omp_set_num_threads(1);
@@ -301,42 +289,6 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
   CHECK((y3 - y1).norm() <= 1e-14 * y1.norm());
   for (const Eigen::VectorXd* p : {&product1, &product3}) CHECK((*p - A * x0).norm() <= 1e-11 * scale * x0.norm());
   CHECK((product3 - product1).norm() <= 1e-14 * product1.norm());
-}
-
-TEST_CASE("HODLR: a Gauss-Seidel pass in single precision is the dense one to single's rounding, its products double",
-          "[hodlr]") {
-  // The surface kernel's blocks rounded to single precision for the passes
-  // (round_passes_to_single), in one thread and shared among threads: x and y within 1e-6 of
-  // the dense pass, y = A x + q no longer to round-off but to single's; the products, the
-  // leaves and the matrices made from it stay double.
-  const int m = 32 * 32;
-  const Eigen::MatrixXd A = surface_kernel(32);
-  HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
-  REQUIRE(!P.passes_in_single());
-  std::srand(9);
-  const Eigen::VectorXd x0 = Eigen::VectorXd::Random(m), q = Eigen::VectorXd::Random(m);
-  const auto [x_dense, y_dense] = dense_pass(A, x0, q);
-  Eigen::VectorXd x_double, y_double;
-  hodlr_pass(P, A, x0, q, x_double, y_double);
-  P.round_passes_to_single();
-  CHECK(P.passes_in_single());
-  CHECK(!P.truncated(1e-13).passes_in_single());
-  const double scale = A.diagonal().maxCoeff();
-  const int threads_before = omp_get_max_threads();
-  for (int threads : {1, 3}) {
-    omp_set_num_threads(threads);
-    Eigen::VectorXd x, y;
-    hodlr_pass(P, A, x0, q, x, y);
-    INFO(threads << " thread(s) asked, " << blas_threads::products() << " share the blocks");
-    CHECK((x - x_dense).norm() <= 1e-6 * x_dense.norm());
-    CHECK((y - y_dense).norm() <= 1e-6 * y_dense.norm());
-    const double drift = (y - A * x - q).norm() / (scale * x.norm());
-    CHECK(drift <= 1e-6);
-    CHECK(drift > 1e-12);  // rounded: the double pass keeps y to 1e-11 and below
-    CHECK((P.multiply(x0) - A * x0).norm() <= 1e-11 * scale * x0.norm());
-  }
-  omp_set_num_threads(threads_before);
-  CHECK((y_double - A * x_double - q).norm() <= 1e-11 * scale * x_double.norm());
 }
 
 TEST_CASE("HODLR: truncated to a looser tolerance the ranks fall and the products stay within it", "[hodlr]") {

@@ -120,8 +120,6 @@ struct TimeParams {
 enum class ContactMethod { Bipotential, Rccm, Newton };
 enum class SweepForm { GaussSeidel, Jacobi };
 enum class RhoRule { Eigen, Paper };
-/// The precision in which the Gauss-Seidel passes read a compressed W0's blocks.
-enum class SweepPrecision { Single, Double };
 /// The sparse solver of the body's stiffness K0 (la/spd_solver.hpp): CHOLMOD (embedded, one
 /// process), PETSc with MUMPS (direct, distributed), PETSc CG with GAMG (iterative);
 /// auto: CHOLMOD in one process, MUMPS under mpirun with several (la/spd_solver.hpp,
@@ -148,7 +146,6 @@ struct SolverParams {
   bool active_set = true;        // the exact step: solve the linear problem of a status pattern (default: 2D only)
   int active_set_max_nodes = 4096;  // beyond, on a dense W0: sweeps only (the exact step keeps two dense (2n)^2 matrices: 32 n^2 bytes)
   int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, 2D newton)
-  SweepPrecision sweep_precision = SweepPrecision::Single;  // compressed W0: its blocks read in single precision by the sweeps (products and convergence checks in double)
   bool springs_follow_beta = false;  // W0's springs follow beta where they lag it (default: 3D only; docs/MODEL.md s4)
   LinearSolverParams linear;        // the body's K0 solves (setup: W0, load responses; body state at output)
   /// Whether the contact solver works on a compressed W0 (bipotential; Newton in 2D): where

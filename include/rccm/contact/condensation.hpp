@@ -20,19 +20,12 @@
 
 namespace rccm {
 
-/// How W0 is kept.
-struct W0Storage {
-  /// Compressed from sparse solves, never dense (the body's factor may then be ordered
-  /// freely); otherwise dense (the interface DOFs ordered last in the factor).
-  bool compressed = false;
-  /// Compressed: the Gauss-Seidel passes read its blocks in single precision (contact/delassus.hpp).
-  bool single_passes = false;
-};
-
 class Condensation {
  public:
+  /// `compress_W0`: W0 compressed from sparse solves, never dense (the body's factor may then
+  /// be ordered freely); otherwise dense (the interface DOFs ordered last in the factor).
   Condensation(const ElasticProblem& body, const Interface& interface, const std::vector<LoadCase>& loads,
-               W0Storage storage);
+               bool compress_W0);
 
   const DelassusOperator& W0() const { return *W0_; }
 
@@ -69,7 +62,6 @@ class Condensation {
   std::vector<TimeFunction> amplitudes_;
   Eigen::MatrixXd U_;  // full displacement of each unit load case (columns)
   Eigen::MatrixXd Q_;  // P U_k (columns)
-  W0Storage storage_;
   std::unique_ptr<DelassusOperator> W0_;
   Eigen::VectorXd shift_;  // K0's springs - W0's, per interface component (change_springs)
 };

@@ -10,7 +10,6 @@
 #include <Eigen/SparseCore>
 
 #include <functional>
-#include <limits>
 #include <optional>
 #include <string>
 
@@ -36,12 +35,6 @@ class DelassusOperator {
   /// throws, u is left behind y: the caller discards both.
   virtual void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                             Eigen::VectorXd& u) const;
-
-  /// The relative rounding of each change gauss_seidel() makes to u: double's epsilon, or
-  /// single's where a compressed W0's passes read its blocks in single precision (then u
-  /// keeps up with y to about 1e-7 of the changes' responses: the solvers judge convergence
-  /// on a fresh product).
-  virtual double pass_rounding() const { return std::numeric_limits<double>::epsilon(); }
 
   /// The diagonal block W0 (first.., first..) of one pair, of size n.
   virtual LocalMatrix block(Eigen::Index first, int n) const = 0;
@@ -128,9 +121,7 @@ class DenseDelassus final : public DelassusOperator {
 /// large-interface default (solver.compressed_min_nodes); the pairs' blocks are the leaves'.
 class CompressedDelassus final : public DelassusOperator {
  public:
-  /// `single_passes`: the Gauss-Seidel passes read W's blocks in single precision
-  /// (HodlrMatrix::round_passes_to_single), 1.7x faster on the 3D peel's W0.
-  CompressedDelassus(HodlrMatrix W, bool single_passes);
+  explicit CompressedDelassus(HodlrMatrix W);
   Eigen::Index size() const override { return W_.size(); }
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
   /// By a product (m r log m): the sweeps go through gauss_seidel instead.
@@ -138,7 +129,6 @@ class CompressedDelassus final : public DelassusOperator {
   /// By the hierarchy: the leaves' columns, then each bisection's blocks once.
   void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                     Eigen::VectorXd& u) const override;
-  double pass_rounding() const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
   /// With the share of the dense matrix it stores and the largest rank of its blocks.

@@ -3,8 +3,6 @@
 // values are those measured best on B1, B2 and the Siconos problems (docs/PERFORMANCE.md).
 #pragma once
 
-#include <limits>
-
 namespace rccm::tuning {
 
 // --- Bipotential solver (bipotential_solver.cpp) ---
@@ -26,12 +24,10 @@ constexpr int anderson_sweeps = 200;
 /// Sweeps between two fresh products u = W0 y + q0: Gauss-Seidel's incremental updates of u
 /// accumulate round-off; a product reads all of W0, as much as a sweep.
 constexpr int refresh_interval = 8;
-/// Convergence is judged on the sweeps' incremental u unless its rounding since the last fresh
-/// product may exceed this, relative: each change's rounding (W0's pass_rounding: double's
-/// epsilon, ~1e-15 of |u| per sweep measured; single's where a compressed W0 is swept in
-/// single precision, always beyond) times the weights of Anderson's extrapolations since.
-/// Then on a fresh u.
-constexpr double max_u_rounding = 1e3 * std::numeric_limits<double>::epsilon();
+/// Convergence is judged on the sweeps' incremental u unless Anderson's extrapolations since
+/// the last fresh product weigh more than this (their weights multiply the round-off of u,
+/// ~1e-15 of |u| per sweep, measured): then on a fresh u.
+constexpr double mixed_u_weight = 1e3;
 /// Rbar = y - E u cancels where beta -> 0: its attainable accuracy is this many eps |y|.
 constexpr double cancellation_floor = 1e3;
 /// A pair's local predictor-corrector stops when its change falls below this fraction of

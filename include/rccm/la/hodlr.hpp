@@ -55,12 +55,6 @@ class HodlrMatrix {
   /// Costs m r log m per pass (the leaves' columns, then each bisection's blocks once).
   void gauss_seidel(const std::function<void(Eigen::Index first)>& visit, const Eigen::VectorXd& x,
                     Eigen::VectorXd& y) const;
-  /// From now on gauss_seidel() reads the off-diagonal blocks from a copy rounded to single
-  /// precision (half the bytes a pass streams; the leaves stay double): y keeps up with x's
-  /// changes to about 1e-7 of their responses, not to round-off. Products stay double; the
-  /// matrices made from this one (rows_mixed, truncated, plus) pass in double.
-  void round_passes_to_single();
-  bool passes_in_single() const { return single_; }
   /// The diagonal block A(first .. first + n - 1, same), within one leaf (a granule's block).
   Eigen::MatrixXd diagonal_block(Eigen::Index first, Eigen::Index n) const;
   /// The largest magnitude on the diagonal.
@@ -88,7 +82,6 @@ class HodlrMatrix {
   std::unique_ptr<Node> root_;
   Eigen::Index size_ = 0;
   int granule_ = 1;
-  bool single_ = false;
 };
 
 /// The factorization of a HodlrMatrix: dense LU at the leaves, and at each bisection the

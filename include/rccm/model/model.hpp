@@ -106,7 +106,7 @@ class Model {
   std::unique_ptr<ElasticProblem> body_;
   std::unique_ptr<Condensation> condensation_;
   std::unique_ptr<BodyForms> forms_;
-  bool follow_beta_ = false, compress_W0_ = false, single_passes_ = true;
+  bool follow_beta_ = false, compress_W0_ = false;
   LinearSolverParams linear_;
   std::vector<int> interface_dofs_;  // ordered last in K0's factor, for the dense W0
   Eigen::VectorXd springs_beta_;
