@@ -5,20 +5,37 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <string>
 
 namespace rccm {
 
+namespace {
+
+/// RCCM_MEMORY_GB in bytes, or a large number when it is not set.
+double memory_cap() {
+  const char* text = std::getenv("RCCM_MEMORY_GB");
+  if (text == nullptr) return 1e18;
+  char* end = nullptr;
+  const double gb = std::strtod(text, &end);
+  if (end == text || *end != '\0' || !(gb > 0) || !std::isfinite(gb))
+    throw InputError(std::string("RCCM_MEMORY_GB=") + text + ": must be a number of gigabytes > 0 (the memory rccm may plan with)");
+  return gb * 1e9;
+}
+
+}  // namespace
+
 double available_memory() {
+  const double cap = memory_cap();
   std::ifstream in("/proc/meminfo");
   std::string key;
   double kb = 0;
   while (in >> key >> kb) {
-    if (key == "MemAvailable:") return 1024 * kb;
+    if (key == "MemAvailable:") return std::min(cap, 1024 * kb);
     in.ignore(256, '\n');
   }
-  return 1e18;
+  return cap;
 }
 
 double assembly_bytes(double unknowns) { return unknowns * (600 + 100 * std::log2(std::max(unknowns, 2.0))); }

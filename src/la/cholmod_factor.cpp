@@ -1,6 +1,8 @@
 #include "rccm/la/cholmod_factor.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/format.hpp"
+#include "rccm/base/memory.hpp"
 #include "rccm/la/blas_threads.hpp"
 
 #include <Eigen/CholmodSupport>
@@ -46,7 +48,21 @@ CholmodFactor::CholmodFactor(const Eigen::SparseMatrix<double>& A, const std::ve
     trailing_order_.assign(perm.end() - c, perm.end());
     for (int i : trailing_order_) RCCM_VERIFY(member[i] == 1, "CAMD placed the constrained indices last");
   }
+  // Too large to index with CHOLMOD's ints (2^31 entries), or no memory for its analysis.
+  if (impl_->L == nullptr && (cm.status == CHOLMOD_TOO_LARGE || cm.status == CHOLMOD_OUT_OF_MEMORY))
+    throw MemoryShortfall("the Cholesky factor of the body's stiffness (" + fmt("%.3g", n) + " unknowns) is " +
+                          (cm.status == CHOLMOD_TOO_LARGE ? "too large for CHOLMOD (2^31 entries at most)"
+                                                          : "more than the machine's memory holds (CHOLMOD's analysis)"));
   RCCM_VERIFY(impl_->L != nullptr, "cholmod_analyze");
+  // The factor's size is known from the ordering: refused now rather than killed for memory
+  // later (a 3D body's factor grows faster than its unknowns; the mesh's up-front estimate
+  // cannot know the ordering).
+  const cholmod_factor& L = *impl_->L;
+  const double entries = L.is_super ? double(L.xsize) : cm.lnz;
+  const std::string shortfall =
+      memory_shortfall(8.0 * entries, "the Cholesky factor of the body's stiffness (" + fmt("%.3g", n) + " unknowns, " +
+                                          fmt("%.3g", entries) + " entries in CHOLMOD's ordering)");
+  if (!shortfall.empty()) throw MemoryShortfall(shortfall);
   cholmod_factorize(&a, impl_->L, &cm);
   ok_ = cm.status == CHOLMOD_OK && impl_->L->minor == impl_->L->n;
   if (!ok_) return;

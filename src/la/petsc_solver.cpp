@@ -1,6 +1,7 @@
 #include "rccm/la/petsc_solver.hpp"
 
 #include "rccm/base/errors.hpp"
+#include "rccm/base/memory.hpp"
 #include "rccm/la/parallel.hpp"
 
 #include <petscksp.h>
@@ -16,11 +17,27 @@ void check(PetscErrorCode e, const char* call) {
   if (e != 0) throw InternalError(std::string("PETSc: ") + call + " failed with error " + std::to_string(e));
 }
 
+/// MUMPS stopped for memory (INFOG(1): -19 over ICNTL(23), -9 and -13 out of memory): said
+/// with its own estimate, INFOG(16) MB per process.
+void refuse_if_short_of_memory(Mat factor, PetscInt n) {
+  PetscInt status = 0, megabytes = 0;
+  check(MatMumpsGetInfog(factor, 1, &status), "MatMumpsGetInfog");
+  if (status != -19 && status != -9 && status != -13) return;
+  check(MatMumpsGetInfog(factor, 16, &megabytes), "MatMumpsGetInfog");
+  std::ostringstream m;
+  m.precision(3);
+  m << "the Cholesky factor of the body's stiffness by MUMPS (" << double(n) << " unknowns, " << parallel::size()
+    << " process(es)) needs about " << 1e-3 * double(megabytes) << " GB per process, each has "
+    << available_memory() / parallel::size() / 1e9 << " GB available";
+  throw MemoryShortfall(m.str());
+}
+
 }  // namespace
 
 struct PetscSolver::Impl {
   Mat A = nullptr;
   KSP ksp = nullptr;
+  Mat factor = nullptr;  // MUMPS's, owned by the preconditioner
   Vec b = nullptr, x = nullptr, x_all = nullptr;  // x_all: the whole solution on every process
   VecScatter to_all = nullptr;
   PetscInt lo = 0, hi = 0;  // this process's rows
@@ -127,6 +144,12 @@ PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolera
     check(KSPSetType(p.ksp, KSPPREONLY), "KSPSetType");
     check(PCSetType(pc, PCCHOLESKY), "PCSetType");
     check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+    check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
+    check(PCFactorGetMatrix(pc, &p.factor), "PCFactorGetMatrix");
+    // MUMPS refuses a factorization whose analysis needs more working memory than each
+    // process may take (ICNTL(23), MB), instead of being killed for memory while it runs.
+    const double per_process = available_memory() / parallel::size() / 1e6;
+    if (per_process < 1e9) check(MatMumpsSetIcntl(p.factor, 23, static_cast<PetscInt>(std::max(1.0, per_process))), "MatMumpsSetIcntl");
   } else {
     check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
     check(PCSetType(pc, PCGAMG), "PCSetType");
@@ -135,6 +158,7 @@ PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolera
   }
   check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");  // PETSC_OPTIONS
   check(KSPSetUp(p.ksp), "KSPSetUp");                     // MUMPS factorizes here
+  if (kind == LinearSolver::Mumps) refuse_if_short_of_memory(p.factor, n);
   check(MatCreateVecs(p.A, &p.x, &p.b), "MatCreateVecs");
   check(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all), "VecScatterCreateToAll");
 

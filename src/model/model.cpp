@@ -200,6 +200,10 @@ Model::Model(const Config& cfg, Mesh mesh)
                     "node, more than a cell; give a point in a body");
   try {
     condense(Eigen::VectorXd::Ones(interface_.size()));  // the springs at beta = 1
+  } catch (const MemoryShortfall& e) {  // the factor's size, known once its ordering is
+    throw InputError(cfg.where("mesh") + ": " + e.what() +
+                     "; use fewer cells (in 3D a factor grows faster than the unknowns), solver.linear = \"cg-gamg\" "
+                     "(no factor), or share the factor among processes under mpirun (\"mumps\")");
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }

@@ -17,6 +17,7 @@
 #include <Eigen/SparseCholesky>
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
 #include <random>
 
 using namespace rccm;
@@ -543,4 +544,39 @@ TEST_CASE("a dense interface larger than the machine's memory is refused before 
                         Catch::Contains("solver.compressed_min_nodes below the contact node count"));
   CHECK_THROWS_WITH(test::make_model(load_config(test::shipped("b1.cfg"), exact)),
                     refusal(exact) && Catch::Contains("needs about 1.6e+03 GB"));
+}
+
+namespace {
+/// RCCM_MEMORY_GB set for a scope, unset after it (whatever the checks did).
+struct MemoryCap {
+  explicit MemoryCap(const char* gigabytes) { setenv("RCCM_MEMORY_GB", gigabytes, 1); }
+  ~MemoryCap() { unsetenv("RCCM_MEMORY_GB"); }
+};
+}  // namespace
+
+TEST_CASE("a body whose factor exceeds the memory rccm may take is refused once its ordering is known naming the mesh",
+          "[model]") {
+  // A 20 x 10 x 20 peel (14 553 unknowns): the mesh's up-front estimate (assembly_bytes, ~29
+  // MB) fits in 50 MB, its Cholesky factor (~16 million entries, ~130 MB with CHOLMOD, ~84 MB
+  // by MUMPS's own estimate) does not, and fits in 500 MB: refused between the two caps and
+  // built above them, by either factorization.
+  const std::vector<std::string> mesh = {"mesh = { size = [20.0, 10.0, 20.0]; nx = 20; ny = 10; nz = 20; element = \"H8\"; };"};
+  for (const char* linear : {"\"cholmod\"", "\"mumps\""}) {
+    const Config cfg = test::corner_peel(20, {std::string("solver.linear=") + linear}, mesh.front());
+    INFO("solver.linear = " << linear);
+    {
+      const MemoryCap cap("0.05");
+      CHECK(available_memory() <= 0.05e9);
+      CHECK(assembly_bytes(3 * 21.0 * 11 * 21) < 0.05e9);  // the mesh's own check lets it through
+      CHECK_THROWS_AS(test::make_model(cfg), InputError);
+      CHECK_THROWS_WITH(test::make_model(cfg), Catch::StartsWith(cfg.where("mesh") + ": the Cholesky factor of the body's stiffness") &&
+                                                   Catch::Contains("needs about 0.") && Catch::Contains("0.05 GB available") &&
+                                                   Catch::Contains("use fewer cells"));
+    }
+    const MemoryCap cap("0.5");
+    CHECK_NOTHROW(test::make_model(cfg));
+  }
+  // Not a number of gigabytes: said, not ignored.
+  const MemoryCap bad("abc");
+  CHECK_THROWS_WITH(available_memory(), "RCCM_MEMORY_GB=abc: must be a number of gigabytes > 0 (the memory rccm may plan with)");
 }

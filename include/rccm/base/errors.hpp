@@ -16,6 +16,13 @@ struct InputError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Bad input that is too large for this machine: a factorization whose size is known only
+/// once its ordering is (the message says how much it needs and has); the caller names the
+/// setting.
+struct MemoryShortfall : InputError {
+  using InputError::InputError;
+};
+
 /// A solve that failed: the message names time, step, node and a suggestion. `node`: the
 /// contact node it concerns, for a caller that knows where that node is (Model::locate).
 struct SolveError : std::runtime_error {

@@ -6,7 +6,9 @@
 
 namespace rccm {
 
-/// Bytes the machine can give this process now (Linux MemAvailable; a large number elsewhere).
+/// Bytes the machine can give this process now (Linux MemAvailable; a large number elsewhere),
+/// at most RCCM_MEMORY_GB gigabytes when that variable is set (a batch job's limit, a shared
+/// machine); InputError if it is not a number > 0.
 double available_memory();
 
 /// Bytes to assemble and factorize an elastic body of `unknowns` unknowns: the assembly's
