@@ -560,9 +560,9 @@ TEST_CASE("a body whose factor exceeds the memory rccm may take is refused once 
   // MB) fits in 50 MB, its Cholesky factor (~16 million entries, ~130 MB with CHOLMOD, ~84 MB
   // by MUMPS's own estimate) does not, and fits in 500 MB: refused between the two caps and
   // built above them, by either factorization.
-  const std::vector<std::string> mesh = {"mesh = { size = [20.0, 10.0, 20.0]; nx = 20; ny = 10; nz = 20; element = \"H8\"; };"};
+  const std::string mesh = "mesh = { size = [20.0, 10.0, 20.0]; nx = 20; ny = 10; nz = 20; element = \"H8\"; };";
   for (const char* linear : {"\"cholmod\"", "\"mumps\""}) {
-    const Config cfg = test::corner_peel(20, {std::string("solver.linear=") + linear}, mesh.front());
+    const Config cfg = test::corner_peel(20, {std::string("solver.linear=") + linear}, mesh);
     INFO("solver.linear = " << linear);
     {
       const MemoryCap cap("0.05");
