@@ -147,7 +147,8 @@ PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolera
     check(PCFactorSetUpMatSolverType(pc), "PCFactorSetUpMatSolverType");
     check(PCFactorGetMatrix(pc, &p.factor), "PCFactorGetMatrix");
     // MUMPS refuses a factorization whose analysis needs more working memory than each
-    // process may take (ICNTL(23), MB), instead of being killed for memory while it runs.
+    // process may take (ICNTL(23), MB), instead of being killed for memory while it runs; no
+    // cap where the memory is unknown (available_memory()'s 1e18 bytes: 1e12 MB).
     const double per_process = available_memory() / parallel::size() / 1e6;
     if (per_process < 1e9) check(MatMumpsSetIcntl(p.factor, 23, static_cast<PetscInt>(std::max(1.0, per_process))), "MatMumpsSetIcntl");
   } else {
