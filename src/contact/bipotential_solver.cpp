@@ -98,7 +98,7 @@ class BipotentialSolver::Iteration {
         if (blocks_[i].prescribed) return;
         pair<dim>(s.y, i) = local(i);
         pair<dim>(s.Rbar, i) = pair<dim>(R_projected_, i);
-      }, s.y, s.u);
+      }, s.y, s.u, SweepBlocks{params_.block_sweeps, tuning::sweep_block_rows});
       return;
     }
     for (int i = 0; i < pb_.size(); ++i)  // the Jacobi form's next y (local(i) reads pair i of y only) ...

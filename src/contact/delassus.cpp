@@ -24,8 +24,12 @@ std::string shape_and_memory(Eigen::Index rows, double doubles) {
 }  // namespace
 
 void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
-                                    Eigen::VectorXd& u) const {
-  pass_over_pairs<LocalVector>(dim, update, [&](Eigen::Index first, const LocalVector& dy) { add_response(first, dy, u); }, y);
+                                    Eigen::VectorXd& u, const SweepBlocks& blocks) const {
+  const auto respond = [&](Eigen::Index first, const LocalVector& dy) { add_response(first, dy, u); };
+  const Eigen::Index m = y.size(), rows = blocks.sweeps > 1 ? block_rows(blocks, dim) : m;
+  for (Eigen::Index begin = 0; begin < m; begin += rows)
+    for (int k = 0; k < std::max(blocks.sweeps, 1); ++k)
+      pass_over_pairs<LocalVector>(dim, update, respond, y, begin, std::min(begin + rows, m));
 }
 
 DenseDelassus::DenseDelassus(Eigen::MatrixXd W)
@@ -68,9 +72,9 @@ void CompressedDelassus::add_response(Eigen::Index first, const LocalVector& dy,
 }
 
 void CompressedDelassus::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
-                                      Eigen::VectorXd& u) const {
+                                      Eigen::VectorXd& u, const SweepBlocks& blocks) const {
   RCCM_VERIFY(W_.granule() == dim, "gauss_seidel(): W0 was compressed for pairs of another size");
-  W_.gauss_seidel([&](Eigen::Index first) { update(static_cast<int>(first / dim)); }, y, u);
+  W_.gauss_seidel([&](Eigen::Index first) { update(static_cast<int>(first / dim)); }, y, u, blocks);
 }
 
 SparseDelassus::SparseDelassus(Eigen::SparseMatrix<double> W) : W_(std::move(W)) {

@@ -185,7 +185,7 @@ class NewtonSolver::Iteration {
       solve_pair<dim>(b, c, R, params_.local_iterations, tuning::local_tolerance_fraction * params_.tolerance, F_old, 0.0);
       pair<dim>(s.y, i) = R + b.E.cwiseProduct(Vec(b.Wb * R + c));
       pair<dim>(s.Rbar, i) = R;
-    }, s.y, s.u);
+    }, s.y, s.u, SweepBlocks{});
     refresh();
   }
 

@@ -225,9 +225,15 @@ Eigen::MatrixXd beside(const Eigen::MatrixXd& A, const Eigen::Ref<const Eigen::M
   return out;
 }
 
+/// The pass over `node`; `block`: its largest subtrees of at most block.rows rows (a leaf at
+/// least) are each passed over block.sweeps times, `inside` one of them.
 void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void(Eigen::Index)>& visit,
-                  const Eigen::VectorXd& x, Eigen::VectorXd& y) {
+                  const Eigen::VectorXd& x, Eigen::VectorXd& y, const SweepBlocks& block, bool inside = false) {
   const Eigen::Index n = node.end - node.begin;
+  if (!inside && block.sweeps > 1 && (node.leaf() || n <= block.rows)) {
+    for (int k = 0; k < block.sweeps; ++k) gauss_seidel(node, g, visit, x, y, block, true);
+    return;
+  }
   if (node.leaf()) {
     Eigen::VectorXd old(g), change(g);  // one allocation per leaf, not per granule
     for (Eigen::Index first = node.begin; first < node.end; first += g) {
@@ -241,11 +247,11 @@ void gauss_seidel(const HodlrMatrix::Node& node, int g, const std::function<void
   const HodlrMatrix::Node &a = *node.first, &b = *node.second;
   const Eigen::Index n1 = a.end - a.begin, n2 = b.end - b.begin;
   Eigen::VectorXd dx1 = -x.segment(a.begin, n1);
-  gauss_seidel(a, g, visit, x, y);
+  gauss_seidel(a, g, visit, x, y, block, inside);
   dx1 += x.segment(a.begin, n1);
   add_block_product<Eigen::VectorXd>(node.U21, node.V21, dx1, y.segment(b.begin, n2));
   Eigen::VectorXd dx2 = -x.segment(b.begin, n2);
-  gauss_seidel(b, g, visit, x, y);
+  gauss_seidel(b, g, visit, x, y, block, inside);
   dx2 += x.segment(b.begin, n2);
   add_block_product<Eigen::VectorXd>(node.U12(), node.V12(), dx2, y.segment(a.begin, n1));
 }
@@ -424,8 +430,8 @@ Eigen::MatrixXd HodlrMatrix::multiply_block(const Eigen::Ref<const Eigen::Matrix
 }
 
 void HodlrMatrix::gauss_seidel(const std::function<void(Eigen::Index)>& visit, const Eigen::VectorXd& x,
-                               Eigen::VectorXd& y) const {
-  rccm::gauss_seidel(*root_, granule_, visit, x, y);
+                               Eigen::VectorXd& y, const SweepBlocks& blocks) const {
+  rccm::gauss_seidel(*root_, granule_, visit, x, y, blocks);
 }
 
 HodlrMatrix HodlrMatrix::rows_mixed(const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) const {

@@ -74,6 +74,55 @@ TEST_CASE("Sparse and dense W0 are the same operator", "[delassus]") {
   }
 }
 
+TEST_CASE("A Gauss-Seidel pass by blocks sweeps each run of pairs several times before the next on dense and sparse W0",
+          "[delassus]") {
+  // Blocks of at most 7 rows over pairs of 2: runs of 3 pairs (6 rows), each swept 3 times
+  // (u keeping up with y everywhere) before the next; the dense W0's inlined pass answers a
+  // run's changes on the other rows once after its sweeps, the same sums in another order.
+  std::mt19937 gen(12);
+  const Eigen::SparseMatrix<double> S = multibody_W(40, 25, gen);
+  const Eigen::MatrixXd W(S);
+  const SparseDelassus sparse(S);
+  const DenseDelassus dense{W};
+  const Eigen::Index m = W.rows();
+  std::uniform_real_distribution<double> U(-1, 1);
+  const Eigen::VectorXd y0 = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
+  const Eigen::VectorXd q = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
+  const auto update = [](Eigen::VectorXd& y, const Eigen::VectorXd& u, int i) {
+    y.segment(2 * i, 2) = -0.4 * u.segment(2 * i, 2) + 0.1 * y.segment(2 * i, 2);
+  };
+  const auto reference = [&](Eigen::Index rows, int sweeps, Eigen::VectorXd& y, Eigen::VectorXd& u) {
+    y = y0, u = W * y0 + q;
+    for (Eigen::Index begin = 0; begin < m; begin += rows)
+      for (int k = 0; k < sweeps; ++k)
+        for (Eigen::Index first = begin; first < std::min(begin + rows, m); first += 2) {
+          const Eigen::Vector2d old = y.segment(first, 2);
+          update(y, u, int(first / 2));
+          u += W.middleCols(first, 2) * (y.segment(first, 2) - old);
+        }
+  };
+  Eigen::VectorXd y6, u6, y8, u8, y_plain, u_plain;
+  reference(6, 3, y6, u6);
+  reference(8, 3, y8, u8);
+  reference(m, 1, y_plain, u_plain);
+  CHECK((y8 - y6).norm() > 1e-6 * y6.norm());  // the runs' length shows in the result
+  CHECK((y_plain - y6).norm() > 1e-6 * y6.norm());
+  const SweepBlocks blocks{3, 7};
+  CHECK(block_rows(blocks, 2) == 6);
+  CHECK(block_rows({3, 1}, 3) == 3);  // a pair at least
+  for (int variant = 0; variant < 3; ++variant) {
+    Eigen::VectorXd y = y0, u = W * y0 + q;
+    const auto visit = [&](int i) { update(y, u, i); };
+    if (variant == 0) gauss_seidel_pass<2>(dense, visit, y, u, blocks);  // dense, inlined
+    if (variant == 1) dense.gauss_seidel(2, visit, y, u, blocks);         // pair by pair with add_response
+    if (variant == 2) gauss_seidel_pass<2>(sparse, visit, y, u, blocks);
+    INFO("variant " << variant);
+    CHECK((y - y6).norm() <= 1e-12 * y6.norm());
+    CHECK((u - u6).norm() <= 1e-12 * u6.norm());
+    CHECK((u - W * y - q).norm() <= 1e-12 * u.norm());
+  }
+}
+
 TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the dense ones to its accuracy", "[delassus]") {
   // A smooth symmetric kernel (the flexibility of a line decays slowly): 2 x 150 rows, leaves of 64.
   const int n = 150, m = 2 * n;
@@ -110,7 +159,8 @@ TEST_CASE("A compressed W0's products, blocks and Gauss-Seidel passes are the de
   const Eigen::VectorXd q = Eigen::VectorXd::NullaryExpr(m, [&]() { return U(gen); });
   Eigen::VectorXd yp = y, yc = y, upass = W * y + q, ucompressed = upass;
   const auto pass = [&](const DelassusOperator& op, Eigen::VectorXd& yy, Eigen::VectorXd& uu) {
-    op.gauss_seidel(2, [&](int i) { yy.segment(2 * i, 2) = -0.4 * uu.segment(2 * i, 2) + 0.1 * yy.segment(2 * i, 2); }, yy, uu);
+    op.gauss_seidel(2, [&](int i) { yy.segment(2 * i, 2) = -0.4 * uu.segment(2 * i, 2) + 0.1 * yy.segment(2 * i, 2); }, yy, uu,
+                    SweepBlocks{});
   };
   pass(plain, yp, upass);
   pass(compressed, yc, ucompressed);

@@ -244,6 +244,7 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
       {"solver.local_iterations=10", {{}, {"solver.method=\"newton\""}}, {{"solver.method=\"rccm\""}, {"solver.form=\"jacobi\""}}},
       {"solver.form=\"jacobi\"", {{}}, {{"solver.method=\"newton\""}}},
       {"solver.anderson=0", {{}}, {{"solver.form=\"jacobi\""}, {"solver.form=\"jacobi\"", "solver.active_set=false"}, {"solver.method=\"newton\""}}},
+      {"solver.block_sweeps=3", {{}}, {{"solver.form=\"jacobi\""}, {"solver.method=\"newton\""}, {"solver.method=\"rccm\""}}},
       {"solver.relaxation=0.5", {{"solver.form=\"jacobi\""}}, {{}, {"solver.method=\"rccm\""}}},
       {"solver.active_set=false", {{}}, {{"solver.method=\"newton\""}}},
       {"solver.active_set_max_nodes=2", {{}}, {{"solver.method=\"rccm\""}, {"solver.active_set=false"}}},

@@ -291,6 +291,48 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
   CHECK((product3 - product1).norm() <= 1e-14 * product1.norm());
 }
 
+TEST_CASE("HODLR: a Gauss-Seidel pass by blocks sweeps each largest subtree within the rows several times before the next",
+          "[hodlr]") {
+  // 1024 rows bisected down to leaves of 32: the largest subtrees of at most 150 rows are the
+  // eight of 128. The pass by blocks must be the dense pass over those eight runs of rows,
+  // each swept three times before the next (y keeping up everywhere), not over runs of 64 or 256.
+  const int m = 32 * 32;
+  const Eigen::MatrixXd A = surface_kernel(32);
+  const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
+  std::srand(11);
+  const Eigen::VectorXd x0 = Eigen::VectorXd::Random(m), q = Eigen::VectorXd::Random(m);
+  const auto update = [](double y, double x) { return -0.4 * y + 0.1 * x; };
+  const auto dense_pass = [&](int rows, int sweeps, Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    x = x0, y = A * x0 + q;
+    for (int begin = 0; begin < m; begin += rows)
+      for (int k = 0; k < sweeps; ++k)
+        for (int i = begin; i < begin + rows; ++i) {
+          const double old = x[i];
+          x[i] = update(y[i], old);
+          y += A.col(i) * (x[i] - old);
+        }
+  };
+  const auto pass = [&](const SweepBlocks& blocks, Eigen::VectorXd& x, Eigen::VectorXd& y) {
+    x = x0, y = A * x0 + q;
+    P.gauss_seidel([&](Eigen::Index i) { x[i] = update(y[i], x[i]); }, x, y, blocks);
+  };
+  Eigen::VectorXd x128, y128, x64, y64, x256, y256, x, y, x1, y1, x_plain, y_plain;
+  dense_pass(128, 3, x128, y128);
+  dense_pass(64, 3, x64, y64);
+  dense_pass(256, 3, x256, y256);
+  dense_pass(m, 1, x_plain, y_plain);
+  pass({3, 150}, x, y);
+  pass({1, 150}, x1, y1);
+  const double scale = A.diagonal().maxCoeff();
+  CHECK((x - x128).norm() <= 1e-11 * x128.norm());
+  CHECK((y - y128).norm() <= 1e-11 * y128.norm());
+  CHECK((y - A * x - q).norm() <= 1e-11 * scale * x.norm());  // y keeps up with x after the pass
+  CHECK((x64 - x128).norm() > 1e-6 * x128.norm());            // the runs' length shows in the result
+  CHECK((x256 - x128).norm() > 1e-6 * x128.norm());
+  CHECK((x1 - x_plain).norm() <= 1e-11 * x_plain.norm());  // one sweep per block: the plain pass
+  CHECK((x - x_plain).norm() > 1e-6 * x_plain.norm());
+}
+
 TEST_CASE("HODLR: truncated to a looser tolerance the ranks fall and the products stay within it", "[hodlr]") {
   const int m = 600;
   const Eigen::MatrixXd A = 1e4 * kernel_matrix(m);  // the tolerance is relative to the diagonal

@@ -141,6 +141,7 @@ struct SolverParams {
   int local_iterations = 100;    // predictor-corrector steps per node and sweep (Gauss-Seidel)
   SweepForm form = SweepForm::GaussSeidel;
   int anderson = 5;              // bipotential Gauss-Seidel: sweeps combined by Anderson acceleration (0: plain sweeps)
+  int block_sweeps = 1;          // bipotential Gauss-Seidel: each block of neighbouring pairs updated this many times per sweep (default: 3D 2)
   RhoRule rho = RhoRule::Eigen;  // eigen: 1/lambda_max of the node block; paper: eq. 34
   double relaxation = 1.0;       // Jacobi under-relaxation of the update, in (0, 1]
   bool active_set = true;        // the exact step: solve the linear problem of a status pattern (default: 2D only)

@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include <algorithm>
 #include <functional>
 #include <optional>
 #include <string>
@@ -31,10 +32,12 @@ class DelassusOperator {
   /// A Gauss-Seidel pass over the pairs (of `dim` rows each), in order: update(i) changes pair
   /// i's entries of y, reading its entries of u, which keep up with y's earlier changes
   /// (u - W0 y is what it was at the pass's start, on that pair on entry to update(i) and
-  /// everywhere after the pass). Pair by pair with add_response unless overridden. If update
-  /// throws, u is left behind y: the caller discards both.
-  virtual void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
-                            Eigen::VectorXd& u) const;
+  /// everywhere after the pass). By `blocks` (la/hodlr.hpp: each block of neighbouring pairs
+  /// updated blocks.sweeps times before the next; consecutive pairs here, the hierarchy's
+  /// subtrees where W0 is compressed). Pair by pair with add_response unless overridden. If
+  /// update throws, u is left behind y: the caller discards both.
+  virtual void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y, Eigen::VectorXd& u,
+                            const SweepBlocks& blocks) const;
 
   /// The diagonal block W0 (first.., first..) of one pair, of size n.
   virtual LocalMatrix block(Eigen::Index first, int n) const = 0;
@@ -57,12 +60,13 @@ class DelassusOperator {
   virtual const HodlrMatrix* compressed_preconditioner() const { return nullptr; }
 };
 
-/// A Gauss-Seidel pass over pairs of `dim` rows of y, in order: update(i) changes pair i's
-/// entries, then respond(first, dy) answers their change dy (a Vec; a pair left as it was,
-/// separated at 0, moves nothing).
+/// A Gauss-Seidel pass over the pairs of `dim` rows of y in rows [begin, end), in order:
+/// update(i) changes pair i's entries, then respond(first, dy) answers their change dy (a Vec;
+/// a pair left as it was, separated at 0, moves nothing).
 template <class Vec, class Update, class Respond>
-void pass_over_pairs(int dim, const Update& update, const Respond& respond, Eigen::VectorXd& y) {
-  for (Eigen::Index first = 0; first < y.size(); first += dim) {
+void pass_over_pairs(int dim, const Update& update, const Respond& respond, Eigen::VectorXd& y, Eigen::Index begin,
+                     Eigen::Index end) {
+  for (Eigen::Index first = begin; first < end; first += dim) {
     const Vec old = y.segment(first, dim);
     update(static_cast<int>(first / dim));
     const Vec dy = y.segment(first, dim) - old;
@@ -87,15 +91,37 @@ void add_columns(const Eigen::MatrixXd& W, Eigen::Index first, const Eigen::Matr
   }
 }
 
-/// W0.gauss_seidel(dim, update, y, u), with `update` and the pairs' responses inlined where W0
-/// is dense (through std::function and run-time sized pairs, the pass cost a cold solve of a
-/// few pairs more than its local solves).
+/// The rows of `blocks`' blocks over pairs of `dim` rows: whole pairs, one at least.
+inline Eigen::Index block_rows(const SweepBlocks& blocks, int dim) { return std::max<Eigen::Index>(dim, blocks.rows / dim * dim); }
+
+/// W0.gauss_seidel(dim, update, y, u, blocks), with `update` and the pairs' responses inlined
+/// where W0 is dense (through std::function and run-time sized pairs, the pass cost a cold
+/// solve of a few pairs more than its local solves). A block swept more than once answers
+/// its pairs' changes on its own rows only, and on the others' once after its sweeps.
 template <int dim, class Update>
-void gauss_seidel_pass(const DelassusOperator& W0, const Update& update, Eigen::VectorXd& y, Eigen::VectorXd& u) {
+void gauss_seidel_pass(const DelassusOperator& W0, const Update& update, Eigen::VectorXd& y, Eigen::VectorXd& u,
+                       const SweepBlocks& blocks) {
   const Eigen::MatrixXd* W = W0.dense();
-  if (W == nullptr) return W0.gauss_seidel(dim, update, y, u);
+  if (W == nullptr) return W0.gauss_seidel(dim, update, y, u, blocks);
   using Vec = Eigen::Matrix<double, dim, 1>;
-  pass_over_pairs<Vec>(dim, update, [&](Eigen::Index first, const Vec& dy) { add_columns<dim>(*W, first, dy, u); }, y);
+  const Eigen::Index m = y.size();
+  if (blocks.sweeps <= 1) {
+    pass_over_pairs<Vec>(dim, update, [&](Eigen::Index first, const Vec& dy) { add_columns<dim>(*W, first, dy, u); }, y, 0, m);
+    return;
+  }
+  const Eigen::Index rows = block_rows(blocks, dim);
+  Eigen::VectorXd dY(rows);
+  for (Eigen::Index begin = 0; begin < m; begin += rows) {
+    const Eigen::Index n = std::min(rows, m - begin), after = begin + n;
+    dY.head(n) = -y.segment(begin, n);
+    for (int k = 0; k < blocks.sweeps; ++k)
+      pass_over_pairs<Vec>(dim, update, [&](Eigen::Index first, const Vec& dy) {
+        u.segment(begin, n).noalias() += W->block(begin, first, n, dim) * dy;
+      }, y, begin, after);
+    dY.head(n) += y.segment(begin, n);
+    u.head(begin).noalias() += W->block(0, begin, begin, n) * dY.head(n);
+    u.tail(m - after).noalias() += W->block(after, begin, m - after, n) * dY.head(n);
+  }
 }
 
 /// W0 stored as a dense symmetric matrix (m^2 memory): the default below a few hundred pairs.
@@ -126,9 +152,10 @@ class CompressedDelassus final : public DelassusOperator {
   void multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const override;
   /// By a product (m r log m): the sweeps go through gauss_seidel instead.
   void add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const override;
-  /// By the hierarchy: the leaves' columns, then each bisection's blocks once.
-  void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
-                    Eigen::VectorXd& u) const override;
+  /// By the hierarchy: the leaves' columns, then each bisection's blocks once (and a block's
+  /// subtree again for each of its further sweeps).
+  void gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y, Eigen::VectorXd& u,
+                    const SweepBlocks& blocks) const override;
   LocalMatrix block(Eigen::Index first, int n) const override { return W_.diagonal_block(first, n); }
   double diagonal_scale() const override { return diagonal_scale_; }
   /// With the share of the dense matrix it stores and the largest rank of its blocks.

@@ -21,6 +21,12 @@ constexpr double sweeps_per_factorization = 3;
 /// plain sweeps still contract: the 1089-node corner peel at t = 9.05 (residual 6e-10 after
 /// 2000 sweeps); accelerated solves there needed at most 93 sweeps.
 constexpr int anderson_sweeps = 200;
+/// The blocks of neighbouring pairs that a sweep passes over solver.block_sweeps times each
+/// (la/hodlr.hpp SweepBlocks): at most this many rows (a compressed W0: its largest subtrees of
+/// at most this many). The 2116-node corner peel (docs/PERFORMANCE.md "Block sweeps"), per
+/// contact solve against single sweeps: subtrees of 198 rows swept twice 0.71, 396 rows 0.67,
+/// 793 rows 0.73; the leaves (50 rows) three times 0.80.
+constexpr long sweep_block_rows = 400;
 /// Sweeps between two fresh products u = W0 y + q0: Gauss-Seidel's incremental updates of u
 /// accumulate round-off; a product reads all of W0, as much as a sweep.
 constexpr int refresh_interval = 8;

@@ -16,6 +16,16 @@
 
 namespace rccm {
 
+/// A Gauss-Seidel pass by blocks of neighbouring unknowns, each block passed over `sweeps`
+/// times before the next (a block Gauss-Seidel pass whose blocks are solved by inner sweeps:
+/// what couples them most is inside, and their part of the matrix stays in the cache). The
+/// blocks have at most `rows` rows (a HODLR matrix: its largest subtrees of at most that many,
+/// a leaf at least). One sweep: the plain pass.
+struct SweepBlocks {
+  int sweeps = 1;
+  Eigen::Index rows = 0;
+};
+
 class HodlrMatrix {
  public:
   /// Compresses the square matrix A: leaves of at most `leaf_size` rows, bisections at
@@ -52,9 +62,10 @@ class HodlrMatrix {
   /// A Gauss-Seidel pass in the order of the granules: visit(first) changes x's granule at
   /// `first` (reading y's), and y keeps up with it: on entry to each visit y holds
   /// A x + (y - A x at the pass's start) on that granule, and after the pass everywhere.
-  /// Costs m r log m per pass (the leaves' columns, then each bisection's blocks once).
+  /// Costs m r log m per pass (the leaves' columns, then each bisection's blocks once), and
+  /// `blocks`' subtrees again for each of their further sweeps.
   void gauss_seidel(const std::function<void(Eigen::Index first)>& visit, const Eigen::VectorXd& x,
-                    Eigen::VectorXd& y) const;
+                    Eigen::VectorXd& y, const SweepBlocks& blocks = {}) const;
   /// The diagonal block A(first .. first + n - 1, same), within one leaf (a granule's block).
   Eigen::MatrixXd diagonal_block(Eigen::Index first, Eigen::Index n) const;
   /// The largest magnitude on the diagonal.
