@@ -98,7 +98,7 @@ class BipotentialSolver::Iteration {
         if (blocks_[i].prescribed) return;
         pair<dim>(s.y, i) = local(i);
         pair<dim>(s.Rbar, i) = pair<dim>(R_projected_, i);
-      }, s.y, s.u, SweepBlocks{params_.block_sweeps, tuning::sweep_block_rows});
+      }, s.y, s.u, blocks_swept_);
       return;
     }
     for (int i = 0; i < pb_.size(); ++i)  // the Jacobi form's next y (local(i) reads pair i of y only) ...
@@ -203,6 +203,10 @@ class BipotentialSolver::Iteration {
   Verification& check_;           // the last verifying pass
   double change_ = 0, previous_change_ = 0;  // relative changes of Rbar over the last two sweeps
   double u_weight_ = 1;  // how much the extrapolations since the last fresh u amplified its round-off
+  // The sweeps' blocks (solver.block_sweeps); a W0 of one block's rows at most is swept
+  // plainly: its block's sweeps would be plain sweeps without the convergence test between.
+  const SweepBlocks blocks_swept_{pb_.W0->size() > tuning::sweep_block_rows ? params_.block_sweeps : 1,
+                                  tuning::sweep_block_rows};
   const bool cold_;      // started from nothing (no Rbar given)
 };
 

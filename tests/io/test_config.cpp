@@ -120,11 +120,16 @@ TEST_CASE("overrides (--set) change any setting, and their errors name them", "[
   CHECK(dir_cfg.where("output.directory") == "--restart /tmp/x");
 }
 
-TEST_CASE("the exact step is on by default in 2D, off in 3D, and either way when set", "[config]") {
+TEST_CASE("the exact step is on by default in 2D and off in 3D and either way when set", "[config]") {
   CHECK(load_config(test::shipped("b1.cfg")).solver.active_set);
   CHECK_FALSE(load_config(test::shipped("corner-peel.cfg")).solver.active_set);
   CHECK(load_config(test::shipped("corner-peel.cfg"), {"solver.active_set=true"}).solver.active_set);
   CHECK_FALSE(load_config(test::shipped("b1.cfg"), {"solver.active_set=false"}).solver.active_set);
+  // Block sweeps likewise: single in 2D (the exact step), twice per block in 3D.
+  CHECK(load_config(test::shipped("b1.cfg")).solver.block_sweeps == 1);
+  CHECK(load_config(test::shipped("corner-peel.cfg")).solver.block_sweeps == 2);
+  CHECK(load_config(test::shipped("corner-peel.cfg"), {"solver.block_sweeps=1"}).solver.block_sweeps == 1);
+  CHECK(load_config(test::shipped("b1.cfg"), {"solver.block_sweeps=3"}).solver.block_sweeps == 3);
 }
 
 TEST_CASE("a config saved with a UTF-8 byte-order mark is refused with what to change", "[config]") {

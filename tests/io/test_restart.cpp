@@ -516,11 +516,14 @@ output = { directory = "b"; checkpoint_steps = 7; };
   // The numerical controls a failure message asks to change do not: a failed run restarts
   // with them changed.
   for (const char* control :
-       {"solver.method=newton", "solver.form=jacobi", "solver.relaxation=0.5", "solver.over_relaxation=1.5", "solver.tolerance=1e-9", "solver.max_iterations=99", "solver.anderson=2",
-        "integrator.rtol=1e-7", "integrator.atol=1e-9", "integrator.max_step=0.1", "integrator.min_step=1e-6",
+       {"solver.method=newton", "solver.form=jacobi", "solver.relaxation=0.5", "solver.over_relaxation=1.2", "solver.tolerance=1e-9", "solver.max_iterations=99", "solver.anderson=2",
+        "solver.block_sweeps=3", "integrator.rtol=1e-7", "integrator.atol=1e-9", "integrator.max_step=0.1", "integrator.min_step=1e-6",
         "integrator.max_steps=99", "integrator.fixed_point_tolerance=1e-9", "integrator.fixed_point_iterations=9"}) {
     INFO(control);
-    CHECK(test::config_from_text(base, {control}).settings == fp);
+    const Config changed = test::config_from_text(base, {control});
+    CHECK(changed.settings == fp);
+    // The controls have their own fingerprint: a sweep keeping a case run with others says so.
+    CHECK(changed.controls_fingerprint() != test::config_from_text(base).controls_fingerprint());
   }
   // A 3D mesh's placement: each number of its origin and of its turn.
   const std::string box = R"(

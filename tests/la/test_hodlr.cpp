@@ -295,7 +295,8 @@ TEST_CASE("HODLR: a Gauss-Seidel pass by blocks sweeps each largest subtree with
           "[hodlr]") {
   // 1024 rows bisected down to leaves of 32: the largest subtrees of at most 150 rows are the
   // eight of 128. The pass by blocks must be the dense pass over those eight runs of rows,
-  // each swept three times before the next (y keeping up everywhere), not over runs of 64 or 256.
+  // each swept three times before the next (y keeping up everywhere), not over runs of 64 or
+  // 256; blocks of fewer rows than a leaf are the leaves.
   const int m = 32 * 32;
   const Eigen::MatrixXd A = surface_kernel(32);
   const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
@@ -316,19 +317,22 @@ TEST_CASE("HODLR: a Gauss-Seidel pass by blocks sweeps each largest subtree with
     x = x0, y = A * x0 + q;
     P.gauss_seidel([&](Eigen::Index i) { x[i] = update(y[i], x[i]); }, x, y, blocks);
   };
-  Eigen::VectorXd x128, y128, x64, y64, x256, y256, x, y, x1, y1, x_plain, y_plain;
+  Eigen::VectorXd x128, y128, x64, y64, x256, y256, x32, y32, x, y, x_leaf, y_leaf, x1, y1, x_plain, y_plain;
   dense_pass(128, 3, x128, y128);
+  dense_pass(32, 3, x32, y32);
   dense_pass(64, 3, x64, y64);
   dense_pass(256, 3, x256, y256);
   dense_pass(m, 1, x_plain, y_plain);
   pass({3, 150}, x, y);
   pass({1, 150}, x1, y1);
+  pass({3, 10}, x_leaf, y_leaf);
   const double scale = A.diagonal().maxCoeff();
   CHECK((x - x128).norm() <= 1e-11 * x128.norm());
   CHECK((y - y128).norm() <= 1e-11 * y128.norm());
   CHECK((y - A * x - q).norm() <= 1e-11 * scale * x.norm());  // y keeps up with x after the pass
   CHECK((x64 - x128).norm() > 1e-6 * x128.norm());            // the runs' length shows in the result
   CHECK((x256 - x128).norm() > 1e-6 * x128.norm());
+  CHECK((x_leaf - x32).norm() <= 1e-11 * x32.norm());
   CHECK((x1 - x_plain).norm() <= 1e-11 * x_plain.norm());  // one sweep per block: the plain pass
   CHECK((x - x_plain).norm() > 1e-6 * x_plain.norm());
 }
