@@ -26,7 +26,7 @@ std::string shape_and_memory(Eigen::Index rows, double doubles) {
 void DelassusOperator::gauss_seidel(int dim, const std::function<void(int)>& update, Eigen::VectorXd& y,
                                     Eigen::VectorXd& u, const SweepBlocks& blocks) const {
   const auto respond = [&](Eigen::Index first, const LocalVector& dy) { add_response(first, dy, u); };
-  const Eigen::Index m = y.size(), rows = blocks.sweeps > 1 ? block_rows(blocks, dim) : m;
+  const Eigen::Index m = y.size(), rows = block_rows(blocks, dim, m);
   for (Eigen::Index begin = 0; begin < m; begin += rows)
     for (int k = 0; k < std::max(blocks.sweeps, 1); ++k)
       pass_over_pairs<LocalVector>(dim, update, respond, y, begin, std::min(begin + rows, m));
@@ -42,9 +42,9 @@ void DenseDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::
 }
 
 void DenseDelassus::add_response(Eigen::Index first, const LocalVector& dy, Eigen::VectorXd& u) const {
-  if (dy.size() == 2) return add_columns<2>(W_, first, dy, u);
+  if (dy.size() == 2) return add_columns<2>(W_, first, dy, u, 0, size());
   RCCM_VERIFY(dy.size() == 3, "add_response(): a pair has 2 or 3 components");
-  add_columns<3>(W_, first, dy, u);
+  add_columns<3>(W_, first, dy, u, 0, size());
 }
 
 CompressedDelassus::CompressedDelassus(HodlrMatrix W) : W_(std::move(W)), diagonal_scale_(W_.diagonal_scale()) {}

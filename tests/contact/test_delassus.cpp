@@ -108,8 +108,9 @@ TEST_CASE("A Gauss-Seidel pass by blocks sweeps each run of pairs several times 
   CHECK((y8 - y6).norm() > 1e-6 * y6.norm());  // the runs' length shows in the result
   CHECK((y_plain - y6).norm() > 1e-6 * y6.norm());
   const SweepBlocks blocks{3, 7};
-  CHECK(block_rows(blocks, 2) == 6);
-  CHECK(block_rows({3, 1}, 3) == 3);  // a pair at least
+  CHECK(block_rows(blocks, 2, m) == 6);
+  CHECK(block_rows({3, 1}, 3, m) == 3);  // a pair at least
+  CHECK(block_rows({1, 7}, 2, m) == m);  // swept once: the plain pass, one block
   for (int variant = 0; variant < 3; ++variant) {
     Eigen::VectorXd y = y0, u = W * y0 + q;
     const auto visit = [&](int i) { update(y, u, i); };

@@ -74,50 +74,49 @@ void pass_over_pairs(int dim, const Update& update, const Respond& respond, Eige
   }
 }
 
-/// u += W (:, first .. first + dim - 1) dy on a dense W: the sweeps' inner loop (half a 3D
-/// run's time), the pair's 2-3 columns in one pass over u.
+/// u += W (:, first .. first + dim - 1) dy on a dense W, on the n rows from `begin`: the sweeps'
+/// inner loop (half a 3D run's time), the pair's 2-3 columns in one pass over u.
 template <int dim>
 void add_columns(const Eigen::MatrixXd& W, Eigen::Index first, const Eigen::Matrix<double, dim, 1>& dy,
-                 Eigen::VectorXd& u) {
+                 Eigen::VectorXd& u, Eigen::Index begin, Eigen::Index n) {
   const Eigen::Index m = W.rows();
-  const double* w = W.data() + first * m;
-  double* x = u.data();
+  const double* w = W.data() + first * m + begin;
+  double* x = u.data() + begin;
   if constexpr (dim == 2) {
     const double a = dy[0], b = dy[1];
-    for (Eigen::Index i = 0; i < m; ++i) x[i] += w[i] * a + w[m + i] * b;
+    for (Eigen::Index i = 0; i < n; ++i) x[i] += w[i] * a + w[m + i] * b;
   } else {
     const double a = dy[0], b = dy[1], c = dy[2];
-    for (Eigen::Index i = 0; i < m; ++i) x[i] += w[i] * a + w[m + i] * b + w[2 * m + i] * c;
+    for (Eigen::Index i = 0; i < n; ++i) x[i] += w[i] * a + w[m + i] * b + w[2 * m + i] * c;
   }
 }
 
-/// The rows of `blocks`' blocks over pairs of `dim` rows: whole pairs, one at least.
-inline Eigen::Index block_rows(const SweepBlocks& blocks, int dim) { return std::max<Eigen::Index>(dim, blocks.rows / dim * dim); }
+/// The rows of `blocks`' blocks over m rows of pairs of `dim` rows: whole pairs, one at least;
+/// all m rows where each block is swept once (the plain pass).
+inline Eigen::Index block_rows(const SweepBlocks& blocks, int dim, Eigen::Index m) {
+  return blocks.sweeps > 1 ? std::max<Eigen::Index>(dim, blocks.rows / dim * dim) : m;
+}
 
 /// W0.gauss_seidel(dim, update, y, u, blocks), with `update` and the pairs' responses inlined
 /// where W0 is dense (through std::function and run-time sized pairs, the pass cost a cold
-/// solve of a few pairs more than its local solves). A block swept more than once answers
-/// its pairs' changes on its own rows only, and on the others' once after its sweeps.
+/// solve of a few pairs more than its local solves). A block answers its pairs' changes on its
+/// own rows during its sweeps, and on the others' once after them (the plain pass: one block
+/// of all rows, nothing after).
 template <int dim, class Update>
 void gauss_seidel_pass(const DelassusOperator& W0, const Update& update, Eigen::VectorXd& y, Eigen::VectorXd& u,
                        const SweepBlocks& blocks) {
   const Eigen::MatrixXd* W = W0.dense();
   if (W == nullptr) return W0.gauss_seidel(dim, update, y, u, blocks);
   using Vec = Eigen::Matrix<double, dim, 1>;
-  const Eigen::Index m = y.size();
-  if (blocks.sweeps <= 1) {
-    pass_over_pairs<Vec>(dim, update, [&](Eigen::Index first, const Vec& dy) { add_columns<dim>(*W, first, dy, u); }, y, 0, m);
-    return;
-  }
-  const Eigen::Index rows = block_rows(blocks, dim);
-  Eigen::VectorXd dY(rows);
+  const Eigen::Index m = y.size(), rows = block_rows(blocks, dim, m);
+  Eigen::VectorXd dY(rows < m ? rows : 0);  // a block's change, for the rows outside it
   for (Eigen::Index begin = 0; begin < m; begin += rows) {
     const Eigen::Index n = std::min(rows, m - begin), after = begin + n;
-    dY.head(n) = -y.segment(begin, n);
-    for (int k = 0; k < blocks.sweeps; ++k)
-      pass_over_pairs<Vec>(dim, update, [&](Eigen::Index first, const Vec& dy) {
-        u.segment(begin, n).noalias() += W->block(begin, first, n, dim) * dy;
-      }, y, begin, after);
+    if (n < m) dY.head(n) = -y.segment(begin, n);
+    for (int k = 0; k < std::max(blocks.sweeps, 1); ++k)
+      pass_over_pairs<Vec>(dim, update, [&](Eigen::Index first, const Vec& dy) { add_columns<dim>(*W, first, dy, u, begin, n); },
+                           y, begin, after);
+    if (n == m) continue;
     dY.head(n) += y.segment(begin, n);
     u.head(begin).noalias() += W->block(0, begin, begin, n) * dY.head(n);
     u.tail(m - after).noalias() += W->block(after, begin, m - after, n) * dY.head(n);
