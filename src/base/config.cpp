@@ -224,6 +224,7 @@ std::vector<std::string> unused_settings(const Config& cfg) {
   const std::string integrator = std::string("the \"") + method_name(m) + "\" integrator" +
                                  (m == Method::RateIndependent && limit ? " (alpha = 0 on every interface)" : "");
   const std::string cholmod = "CHOLMOD (solver.linear = \"cholmod\", or \"auto\" in one process)";
+  const std::string linear_solver = S.linear.kind == LinearSolver::Cholmod ? cholmod : "PETSc CG + GAMG (solver.linear = \"cg-gamg\")";
   const std::string active_set = solver + (bipotential ? " without its exact step (solver.active_set = false)" : "");
   struct Use {
     const char* path;
@@ -255,7 +256,9 @@ std::vector<std::string> unused_settings(const Config& cfg) {
       {"integrator.fixed_point_tolerance", m == Method::RateIndependent, integrator, "\"rate-independent\""},
       {"integrator.fixed_point_iterations", m == Method::RateIndependent, integrator, "\"rate-independent\""},
       {"solver.linear_tolerance", S.linear.kind != LinearSolver::Cholmod, cholmod,
-       "solver.linear = \"cg-gamg\" and \"mumps\" (\"auto\" under mpirun)"}};
+       "solver.linear = \"cg-gamg\" and \"mumps\" (\"auto\" under mpirun)"},
+      {"solver.out_of_core", S.linear.kind == LinearSolver::Mumps, linear_solver,
+       "solver.linear = \"mumps\" (\"auto\" under mpirun)"}};
   std::vector<std::string> notes;
   for (const Use& u : uses)
     if (!u.read && cfg.lines.count(u.path))

@@ -40,13 +40,14 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
   K0_FD_.resize(nf, nd);
   K0_FD_.setFromTriplets(fd.begin(), fd.end());
 
-  std::vector<int> last;  // the free interface DOFs, among the free DOFs
+  std::vector<int>& last = interface_free_;
   for (int d : interface_dofs)
     if (free_index_[d] >= 0) last.push_back(free_index_[d]);
   std::sort(last.begin(), last.end());
   last.erase(std::unique(last.begin(), last.end()), last.end());
   solver_ = make_spd_solver(K0_FF, linear, last);
   if (!last.empty()) trailing_ = dynamic_cast<const CholmodFactor*>(solver_.get());
+  if (const auto* petsc = dynamic_cast<const PetscSolver*>(solver_.get())) schur_ = petsc->schur_factor();
   // A floating body gives a zero pivot or, in floating point, a tiny one; so do stiffnesses
   // that differ by more than double precision can hold (Cn = 1e30 against E = 1e3).
   if (!solver_->ok() || solver_->rcond() < 1e-14) {
@@ -67,26 +68,43 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
   }
 }
 
-Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
-  if (!trailing_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
-  const std::vector<int>& order = trailing_->trailing_order();  // free indices of the interface DOFs
+SparseMatrix ElasticProblem::interface_forces(const SparseMatrix& P, const std::vector<int>& order) const {
   std::vector<int> position(free_.size(), -1);
   for (std::size_t k = 0; k < order.size(); ++k) position[order[k]] = static_cast<int>(k);
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(order.size()), P.rows());  // P_C^T
+  std::vector<Eigen::Triplet<double>> entries;
   for (int col = 0; col < P.outerSize(); ++col)
     for (SparseMatrix::InnerIterator it(P, col); it; ++it) {
       const int f = free_index_[col];
       if (f < 0) continue;  // a prescribed DOF: zero displacement under interface forces
       RCCM_VERIFY(position[f] >= 0, "flexibility(): P reads a DOF that was not ordered last");
-      G(position[f], it.row()) = it.value();
+      entries.emplace_back(position[f], static_cast<int>(it.row()), it.value());
     }
-  trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
+  SparseMatrix Pt(static_cast<Eigen::Index>(order.size()), P.rows());
+  Pt.setFromTriplets(entries.begin(), entries.end());
+  return Pt;
+}
+
+Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
+  if (!trailing_ && !schur_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
+  Eigen::MatrixXd G = trailing_ ? Eigen::MatrixXd(interface_forces(P, trailing_->trailing_order()))
+                                : Eigen::MatrixXd(interface_forces(P, interface_free_));  // P_C^T
+  if (trailing_)
+    trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
+  else
+    schur_->triangularView<Eigen::Lower>().solveInPlace(G);
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(P.rows(), P.rows());
   W.selfadjointView<Eigen::Lower>().rankUpdate(G.transpose());
   return W.selfadjointView<Eigen::Lower>();
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const {
+  if (schur_) {  // P_C S^-1 P_C^T Y, S = L L^T
+    const SparseMatrix Pt = interface_forces(P, interface_free_);
+    Eigen::MatrixXd X = Pt * Y;
+    schur_->triangularView<Eigen::Lower>().solveInPlace(X);
+    schur_->transpose().triangularView<Eigen::Upper>().solveInPlace(X);
+    return Pt.transpose() * X;
+  }
   // By blocks of columns, the forces P^T Y gathered onto the free DOFs directly (the prescribed
   // ones: zero displacement, their forces unread). The blocks are as wide as 128 MB of forces
   // and displacements allow, 8 to 64 columns: wider blocks make the factor's solves matrix-matrix

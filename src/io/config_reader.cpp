@@ -733,7 +733,7 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   const Setting* s = r.optional_group(root, "solver");
   if (!s) return S;
   r.only(*s, {"method", "over_relaxation", "tolerance", "max_iterations", "local_iterations", "form", "anderson", "block_sweeps", "rho", "relaxation",
-              "active_set", "active_set_max_nodes", "compressed_min_nodes", "springs_follow_beta", "linear", "linear_tolerance"});
+              "active_set", "active_set_max_nodes", "compressed_min_nodes", "springs_follow_beta", "linear", "linear_tolerance", "out_of_core"});
   S.method = static_cast<ContactMethod>(r.choice(*s, "method", {"bipotential", "rccm", "newton"}, 0));
   S.over_relaxation = r.number(*s, "over_relaxation", S.over_relaxation);
   if (s->exists("over_relaxation"))
@@ -774,6 +774,7 @@ SolverParams read_solver(const Reader& r, const Setting& root, int dim) {
   if (s->exists("linear_tolerance"))
     r.check(S.linear.tolerance > 0 && S.linear.tolerance < 1, (*s)["linear_tolerance"], "must be in (0, 1)",
             S.linear.tolerance);
+  S.linear.out_of_core = r.boolean(*s, "out_of_core", S.linear.out_of_core);
   return S;
 }
 

@@ -4,6 +4,7 @@
 #include "rccm/base/memory.hpp"
 #include "rccm/la/parallel.hpp"
 
+#include <Eigen/Cholesky>
 #include <petscksp.h>
 
 #include <cmath>
@@ -32,6 +33,22 @@ void refuse_if_short_of_memory(Mat factor, PetscInt n) {
   throw MemoryShortfall(m.str());
 }
 
+/// MUMPS failed otherwise than for memory or a singular matrix (INFOG(1) < 0): said with its
+/// codes; out of core, the usual cause is the disk.
+void refuse_if_failed(Mat factor, bool out_of_core) {
+  PetscInt status = 0, detail = 0;
+  check(MatMumpsGetInfog(factor, 1, &status), "MatMumpsGetInfog");
+  if (status >= 0 || status == -10 || status == -40) return;  // -10, -40: singular, said by the caller
+  check(MatMumpsGetInfog(factor, 2, &detail), "MatMumpsGetInfog");
+  std::ostringstream m;
+  m << "the factorization of the body's stiffness by MUMPS failed (INFOG(1) = " << status << ", INFOG(2) = " << detail
+    << "; the MUMPS users' guide lists the codes)";
+  if (out_of_core)
+    m << "; out of core (solver.out_of_core) it writes its factor to MUMPS_OOC_TMPDIR, else /tmp: check that "
+         "directory's free space";
+  throw SolveError(m.str());
+}
+
 }  // namespace
 
 struct PetscSolver::Impl {
@@ -41,6 +58,7 @@ struct PetscSolver::Impl {
   Vec b = nullptr, x = nullptr, x_all = nullptr;  // x_all: the whole solution on every process
   VecScatter to_all = nullptr;
   PetscInt lo = 0, hi = 0;  // this process's rows
+  bool schur = false;       // MUMPS forms the Schur complement on `last`
 
   ~Impl() {
     VecScatterDestroy(&to_all);
@@ -100,8 +118,9 @@ struct PetscSolver::Impl {
   }
 };
 
-PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolerance)
-    : impl_(std::make_unique<Impl>()), kind_(kind) {
+PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params, const std::vector<int>& last)
+    : impl_(std::make_unique<Impl>()), kind_(params.kind), out_of_core_(params.kind == LinearSolver::Mumps && params.out_of_core) {
+  const LinearSolver kind = params.kind;
   RCCM_VERIFY(kind == LinearSolver::Mumps || kind == LinearSolver::CgGamg, "PetscSolver: MUMPS or CG + GAMG");
   parallel::start();
   Impl& p = *impl_;
@@ -151,17 +170,38 @@ PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolera
     // cap where the memory is unknown (available_memory()'s 1e18 bytes: 1e12 MB).
     const double per_process = available_memory() / parallel::size() / 1e6;
     if (per_process < 1e9) check(MatMumpsSetIcntl(p.factor, 23, static_cast<PetscInt>(std::max(1.0, per_process))), "MatMumpsSetIcntl");
+    if (params.out_of_core) check(MatMumpsSetIcntl(p.factor, 22, 1), "MatMumpsSetIcntl");
+    // The Schur complement on `last` (dense, c x c), formed by the factorization as its last
+    // front; PETSc keeps the full solves whole around it. One process only (PETSc's support),
+    // and where it, PETSc's factor of it and ours take at most a quarter of the memory.
+    const double c = double(last.size());
+    if (!last.empty() && parallel::size() == 1 && 24 * c * c <= available_memory() / 4) {
+      const std::vector<PetscInt> indices(last.begin(), last.end());
+      IS schur_indices = nullptr;
+      check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(indices.size()), indices.data(), PETSC_COPY_VALUES, &schur_indices),
+            "ISCreateGeneral");
+      check(MatFactorSetSchurIS(p.factor, schur_indices), "MatFactorSetSchurIS");
+      ISDestroy(&schur_indices);
+      p.schur = true;
+    }
   } else {
     check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
     check(PCSetType(pc, PCGAMG), "PCSetType");
     check(KSPSetNormType(p.ksp, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");  // the residual itself
-    check(KSPSetTolerances(p.ksp, tolerance, 1e-300, PETSC_DEFAULT, 100000), "KSPSetTolerances");
+    check(KSPSetTolerances(p.ksp, params.tolerance, 1e-300, PETSC_DEFAULT, 100000), "KSPSetTolerances");
   }
   check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");  // PETSC_OPTIONS
   check(KSPSetUp(p.ksp), "KSPSetUp");                     // MUMPS factorizes here
-  if (kind == LinearSolver::Mumps) refuse_if_short_of_memory(p.factor, n);
+  if (kind == LinearSolver::Mumps) {
+    refuse_if_short_of_memory(p.factor, n);
+    refuse_if_failed(p.factor, params.out_of_core);
+    PetscInt status = 0;
+    check(MatMumpsGetInfog(p.factor, 1, &status), "MatMumpsGetInfog");
+    if (status < 0) return;  // singular: not ok
+  }
   check(MatCreateVecs(p.A, &p.x, &p.b), "MatCreateVecs");
   check(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all), "VecScatterCreateToAll");
+  if (!take_schur_factor()) return;  // S not positive definite: a floating structure
 
   // Positive definite? A failed factorization (a zero pivot) or a floating structure shows in
   // the residual of a solve whose right-hand side has a part in every direction.
@@ -169,13 +209,43 @@ PetscSolver::PetscSolver(const SparseMatrix& A, LinearSolver kind, double tolera
   for (PetscInt i = 0; i < n; ++i) rhs[i] = 1.0 + 0.5 * std::sin(1.3 * static_cast<double>(i));
   const KSPConvergedReason reason = p.solve_column(rhs.data(), x.data());
   const double residual = (A * x - rhs).norm() / rhs.norm();
-  ok_ = reason >= 0 && residual <= std::max(1e-8, 10 * tolerance);  // false for NaN too
+  ok_ = reason >= 0 && residual <= std::max(1e-8, 10 * params.tolerance);  // false for NaN too
   if (!ok_) return;
   const Eigen::VectorXd d = Eigen::VectorXd(A.diagonal()).cwiseAbs();
   rcond_ = d.minCoeff() / d.maxCoeff();
 }
 
 PetscSolver::~PetscSolver() = default;
+
+bool PetscSolver::take_schur_factor() {
+  Impl& p = *impl_;
+  if (!p.schur) return true;
+  Mat S = nullptr;
+  MatFactorSchurStatus state;
+  check(MatFactorCreateSchurComplement(p.factor, &S, &state), "MatFactorCreateSchurComplement");
+  PetscInt c = 0, lda = 0;
+  check(MatGetSize(S, &c, nullptr), "MatGetSize");
+  check(MatDenseGetLDA(S, &lda), "MatDenseGetLDA");
+  const PetscScalar* a = nullptr;
+  check(MatDenseGetArrayRead(S, &a), "MatDenseGetArrayRead");
+  schur_factor_ = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>(a, c, c, Eigen::OuterStride<>(lda));
+  check(MatDenseRestoreArrayRead(S, &a), "MatDenseRestoreArrayRead");
+  MatDestroy(&S);
+  // MUMPS gives a symmetric S whole or as one triangle: the lower one is factorized, taken
+  // from the upper where the lower is empty.
+  bool lower_empty = true;
+  for (PetscInt j = 0; j < c && lower_empty; ++j)
+    for (PetscInt i = j + 1; i < c && lower_empty; ++i) lower_empty = schur_factor_(i, j) == 0;
+  for (PetscInt j = 0; j < c && lower_empty; ++j)
+    for (PetscInt i = j + 1; i < c; ++i) schur_factor_(i, j) = schur_factor_(j, i);
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(schur_factor_);  // in place
+  if (llt.info() != Eigen::Success) {
+    schur_factor_.resize(0, 0);
+    return false;
+  }
+  schur_factor_.triangularView<Eigen::StrictlyUpper>().setZero();
+  return true;
+}
 
 Eigen::MatrixXd PetscSolver::solve(const Eigen::MatrixXd& b) const {
   Eigen::MatrixXd x(b.rows(), b.cols());
@@ -200,8 +270,11 @@ Eigen::MatrixXd PetscSolver::solve(const Eigen::MatrixXd& b) const {
 
 std::string PetscSolver::name() const {
   const int procs = parallel::size();
-  return std::string(kind_ == LinearSolver::Mumps ? "PETSc MUMPS" : "PETSc CG + GAMG") + " on " +
-         std::to_string(procs) + (procs == 1 ? " process" : " processes");
+  std::string name = std::string(kind_ == LinearSolver::Mumps ? "PETSc MUMPS" : "PETSc CG + GAMG") + " on " +
+                     std::to_string(procs) + (procs == 1 ? " process" : " processes");
+  if (out_of_core_) name += ", out of core";
+  if (schur_factor_.size()) name += ", with the Schur complement on " + std::to_string(schur_factor_.rows()) + " interface DOFs";
+  return name;
 }
 
 }  // namespace rccm

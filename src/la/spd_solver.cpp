@@ -15,7 +15,9 @@ std::unique_ptr<SpdSolver> make_spd_solver(const SparseMatrix& A, const LinearSo
                                            const std::vector<int>& last) {
   const LinearSolver kind = chosen_linear_solver(params.kind);
   if (kind == LinearSolver::Cholmod) return std::make_unique<CholmodFactor>(A, last);
-  return std::make_unique<PetscSolver>(A, kind, params.tolerance);
+  LinearSolverParams chosen = params;
+  chosen.kind = kind;
+  return std::make_unique<PetscSolver>(A, chosen, last);
 }
 
 }  // namespace rccm

@@ -181,12 +181,14 @@ Model::Model(const Config& cfg, Mesh mesh)
   note_tables_past_T(cfg);
   K_ = assemble_stiffness(mesh_, materials_);
   check_restrained(cfg);
-  if (!compress_W0_)
+  follow_beta_ = cfg.solver.springs_follow_beta;
+  linear_ = cfg.solver.linear;
+  // The interface's DOFs: ordered last by CHOLMOD for a dense W0; MUMPS forms their Schur
+  // complement (one process), so that a compressed W0's products need no solve of the body.
+  if (!compress_W0_ || chosen_linear_solver(linear_.kind) == LinearSolver::Mumps)
     for (const ContactPair& c : interface_.pairs)
       for (int node : {c.node, c.opposite})
         for (int x = 0; node >= 0 && x < mesh_.dim; ++x) interface_dofs_.push_back(mesh_.dof(node, x));
-  follow_beta_ = cfg.solver.springs_follow_beta;
-  linear_ = cfg.solver.linear;
   D1_ = interface_.spring_stiffness();
   g0_.resize(interface_.size());
   for (int i = 0; i < interface_.size(); ++i) g0_[i] = interface_.pairs[i].g0;
@@ -203,7 +205,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   } catch (const MemoryShortfall& e) {  // the factor's size, known once its ordering is
     throw InputError(cfg.where("mesh") + ": " + e.what() +
                      "; use fewer cells (in 3D a factor grows faster than the unknowns), solver.linear = \"cg-gamg\" "
-                     "(no factor), or share the factor among processes under mpirun (\"mumps\")");
+                     "(no factor), \"mumps\" with solver.out_of_core = true (its factor on disk, in "
+                     "MUMPS_OOC_TMPDIR or /tmp), or share the factor among processes under mpirun (\"mumps\")");
   } catch (const InputError& e) {  // a singular stiffness: the loads' supports and the interface do not hold the body
     throw InputError(cfg.where("loads") + ": " + e.what());
   }

@@ -256,6 +256,8 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
       {"solver.compressed_min_nodes=2", {{}, {"solver.method=\"newton\""}}, {{"solver.method=\"rccm\""}}},
       {"solver.linear_tolerance=1e-8", {{"solver.linear=\"cg-gamg\""}, {"solver.linear=\"mumps\""}},
        {{"solver.linear=\"cholmod\""}, {}, {"solver.linear=\"auto\""}}},  // auto: CHOLMOD in one process
+      {"solver.out_of_core=true", {{"solver.linear=\"mumps\""}},
+       {{"solver.linear=\"cholmod\""}, {}, {"solver.linear=\"cg-gamg\""}}},
       {"integrator.scheme=\"erk\"", {{}}, {{"integrator.method=\"euler\""}}},
       {"integrator.table=\"ARKODE_SDIRK_5_3_4\"", {{}}, {{"integrator.method=\"euler\""}}},
       {"integrator.rtol=1e-7", {{}}, {{"integrator.method=\"euler\""}, {"interface.alpha=0"}}},
@@ -302,6 +304,10 @@ TEST_CASE("a setting the run's methods do not read is noted with its line and wh
           std::vector<std::string>{"--set solver.linear_tolerance: not read by CHOLMOD (solver.linear = \"cholmod\", or "
                                    "\"auto\" in one process), only by solver.linear = \"cg-gamg\" and \"mumps\" (\"auto\" "
                                    "under mpirun); it has no effect on this run"});
+  CHECK_THAT(unused_settings(test::config_from_text(good, {"solver.linear=\"cg-gamg\"", "solver.out_of_core=true"})).at(0),
+             Catch::Contains("not read by PETSc CG + GAMG (solver.linear = \"cg-gamg\"), only by solver.linear = \"mumps\""));
+  CHECK(test::config_from_text(good, {"solver.linear=\"mumps\"", "solver.out_of_core=true"}).solver.linear.out_of_core);
+  CHECK(!test::config_from_text(good, {"solver.linear=\"mumps\""}).solver.linear.out_of_core);
   // The 3D Newton step keeps W0 dense.
   const std::vector<std::string> peel = unused_settings(test::corner_peel(2, {"solver.method=\"newton\"", "solver.compressed_min_nodes=100"}));
   CHECK(std::count_if(peel.begin(), peel.end(), [](const std::string& n) { return n.find("compressed_min_nodes") != n.npos; }) == 1);

@@ -1,12 +1,17 @@
 // The body's solves by PETSc (MUMPS, CG + GAMG) against CHOLMOD: the same displacements, the
-// same W0 and free responses; a floating body refused by each. One process here; the same
-// under mpirun -np 2 is tests/check_mpi.py.
+// same W0 and free responses, from MUMPS's Schur complement on the interface and from its
+// solves, in core and out of core; a floating body refused by each. One process here; the
+// same under mpirun -np 2 is tests/check_mpi.py.
 #include "helpers.hpp"
 #include "rccm/fem/elastic_problem.hpp"
 #include "rccm/la/petsc_solver.hpp"
 #include "rccm/model/model.hpp"
 
 #include <catch2/catch.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <unistd.h>
 
 using namespace rccm;
 
@@ -25,6 +30,20 @@ time = { T = 10.0; steps = 210; };
 LinearSolverParams solver(LinearSolver kind, double tolerance = 1e-12) { return {kind, tolerance}; }
 
 double relative(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b) { return (a - b).norm() / b.norm(); }
+
+/// The DOFs P reads: the interface's.
+std::vector<int> read_dofs(const SparseMatrix& P) {
+  std::vector<int> dofs;
+  for (int col = 0; col < P.outerSize(); ++col)
+    if (SparseMatrix::InnerIterator(P, col)) dofs.push_back(col);
+  return dofs;
+}
+
+/// MUMPS_OOC_TMPDIR set to `dir` while it lives.
+struct OutOfCoreDirectory {
+  explicit OutOfCoreDirectory(const std::string& dir) { setenv("MUMPS_OOC_TMPDIR", dir.c_str(), 1); }
+  ~OutOfCoreDirectory() { unsetenv("MUMPS_OOC_TMPDIR"); }
+};
 
 }  // namespace
 
@@ -57,12 +76,12 @@ TEST_CASE("W0 and the free responses from MUMPS's solves equal those from CHOLMO
   const Model mumps = test::make_model(test::config_from_text(kLayer, {"solver.linear=\"mumps\""}));
   const Model mumps_compressed = test::make_model(
       test::config_from_text(kLayer, {"solver.linear=\"mumps\"", "solver.compressed_min_nodes=0"}));
-  // Dense: CHOLMOD's from the trailing block of its factor, MUMPS's one solve per column.
+  // Dense: CHOLMOD's from the trailing block of its factor, MUMPS's from its Schur complement.
   const Eigen::MatrixXd& W0 = *cholmod.condensation().W0().dense();
-  REQUIRE(mumps.linear_solver() == "PETSc MUMPS on 1 process");
+  REQUIRE(mumps.linear_solver() == "PETSc MUMPS on 1 process, with the Schur complement on 130 interface DOFs");
   REQUIRE(mumps.condensation().W0().dense() != nullptr);
   CHECK(relative(*mumps.condensation().W0().dense(), W0) <= 1e-12);
-  // Compressed from blocks of MUMPS's solves (peeling): products to the compression's accuracy.
+  // Compressed from products with the Schur complement's factor: to the compression's accuracy.
   const DelassusOperator& W0c = mumps_compressed.condensation().W0();
   REQUIRE(W0c.compressed() != nullptr);
   const Eigen::VectorXd y = Eigen::VectorXd::Random(W0.rows());
@@ -78,4 +97,61 @@ TEST_CASE("a floating body is refused whichever solver factorizes it", "[petsc]"
   for (LinearSolver kind : {LinearSolver::Cholmod, LinearSolver::Mumps, LinearSolver::CgGamg})
     CHECK_THROWS_WITH(ElasticProblem(model.stiffness(), no_springs, {}, {}, solver(kind)),
                       Catch::Contains("not restrained"));
+  // With the interface's Schur complement, the rest of the body is held by the interface's
+  // DOFs: the floating modes are in S alone.
+  CHECK_THROWS_WITH(ElasticProblem(model.stiffness(), no_springs, {}, read_dofs(model.interface().P),
+                                   solver(LinearSolver::Mumps)),
+                    Catch::Contains("not restrained"));
+}
+
+TEST_CASE("MUMPS's Schur complement on the interface gives W0 and its products as its solves do", "[petsc]") {
+  const Model model = test::make_model(test::config_from_text(kLayer));
+  const Eigen::VectorXd one = Eigen::VectorXd::Ones(model.contact_nodes());
+  const SparseMatrix springs = model.interface().springs(one, one);
+  const SparseMatrix& P = model.interface().P;
+  const std::vector<int> dofs = read_dofs(P);
+  const ElasticProblem cholmod(model.stiffness(), springs, model.supports(), dofs, solver(LinearSolver::Cholmod));
+  const ElasticProblem schur(model.stiffness(), springs, model.supports(), dofs, solver(LinearSolver::Mumps));
+  const ElasticProblem solves(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::Mumps));
+  REQUIRE(schur.solver_name() == "PETSc MUMPS on 1 process, with the Schur complement on 130 interface DOFs");
+  REQUIRE(solves.solver_name() == "PETSc MUMPS on 1 process");
+  const Eigen::MatrixXd W = cholmod.flexibility(P);
+  CHECK(relative(schur.flexibility(P), W) <= 1e-12);
+  CHECK(relative(solves.flexibility(P), W) <= 1e-12);
+  const Eigen::MatrixXd Y = Eigen::MatrixXd::Random(P.rows(), 5);
+  CHECK(relative(schur.flexibility_products(P, Y), W * Y) <= 1e-12);
+  CHECK(relative(solves.flexibility_products(P, Y), W * Y) <= 1e-12);
+  // The body's full solves around S (condensed on it, S solved, expanded) as CHOLMOD's.
+  const Eigen::Index n = model.stiffness().rows();
+  Eigen::MatrixXd f = Eigen::MatrixXd::Random(n, 2), u_prescribed = Eigen::MatrixXd::Zero(n, 2);
+  for (int d : model.supports()) u_prescribed.row(d).setConstant(0.01);
+  CHECK(relative(schur.solve(f, u_prescribed), cholmod.solve(f, u_prescribed)) <= 1e-11);
+}
+
+TEST_CASE("MUMPS out of core keeps its factor in MUMPS_OOC_TMPDIR and solves as in core", "[petsc]") {
+  const Model model = test::make_model(test::config_from_text(kLayer));
+  const Eigen::VectorXd one = Eigen::VectorXd::Ones(model.contact_nodes());
+  const SparseMatrix springs = model.interface().springs(one, one);
+  const SparseMatrix& P = model.interface().P;
+  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("rccm-ooc-" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const OutOfCoreDirectory in(dir.string());
+  LinearSolverParams ooc = solver(LinearSolver::Mumps);
+  ooc.out_of_core = true;
+  const ElasticProblem cholmod(model.stiffness(), springs, model.supports(), read_dofs(P), solver(LinearSolver::Cholmod));
+  {
+    const ElasticProblem disk(model.stiffness(), springs, model.supports(), read_dofs(P), ooc);
+    CHECK(disk.solver_name() == "PETSc MUMPS on 1 process, out of core, with the Schur complement on 130 interface DOFs");
+    CHECK(!std::filesystem::is_empty(dir));  // the factor's files
+    CHECK(relative(disk.flexibility(P), cholmod.flexibility(P)) <= 1e-12);
+    const Eigen::Index n = model.stiffness().rows();
+    const Eigen::MatrixXd f = Eigen::MatrixXd::Random(n, 2), u_prescribed = Eigen::MatrixXd::Zero(n, 2);
+    CHECK(relative(disk.solve(f, u_prescribed), cholmod.solve(f, u_prescribed)) <= 1e-11);
+  }
+  CHECK(std::filesystem::is_empty(dir));  // removed with the factor
+  std::filesystem::remove_all(dir);
+  // A directory that cannot hold them: MUMPS's failure said, with where it writes.
+  const OutOfCoreDirectory nowhere((dir / "missing").string());
+  CHECK_THROWS_WITH(ElasticProblem(model.stiffness(), springs, model.supports(), read_dofs(P), ooc),
+                    Catch::Contains("MUMPS failed (INFOG(1) = ") && Catch::Contains("MUMPS_OOC_TMPDIR"));
 }

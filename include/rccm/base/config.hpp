@@ -130,6 +130,7 @@ enum class LinearSolver { Auto, Cholmod, Mumps, CgGamg };
 struct LinearSolverParams {
   LinearSolver kind = LinearSolver::Auto;
   double tolerance = 1e-12;  // cg-gamg: relative residual of each solve
+  bool out_of_core = false;  // mumps: the factor written to disk (MUMPS_OOC_TMPDIR, else /tmp)
 };
 
 /// Numerics of the contact solve at fixed beta (docs/MODEL.md s5, docs/SOLVERS.md).

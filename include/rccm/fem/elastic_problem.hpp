@@ -2,10 +2,11 @@
 // springs added (docs/MODEL.md s4: K0 = K + sum_i P_i^T a_i diag(Ct, Cn) P_i), factorized once,
 // by CHOLMOD with the interface DOFs ordered last so that the flexibility P K0^-1 P^T comes
 // from the factor's trailing block (CholmodFactor), or by PETSc over the processes of the run
-// (la/spd_solver.hpp).
+// (la/spd_solver.hpp), whose MUMPS forms the interface DOFs' Schur complement in one process.
 #pragma once
 
 #include "rccm/la/cholmod_factor.hpp"
+#include "rccm/la/petsc_solver.hpp"
 #include "rccm/la/spd_solver.hpp"
 #include "rccm/la/sparse.hpp"
 
@@ -20,7 +21,8 @@ class ElasticProblem {
  public:
   /// `springs`: full-size sparse matrix added to K before elimination (the interface
   /// springs at beta = 1); `prescribed`: the Dirichlet DOFs (Mesh::dof numbering);
-  /// `interface_dofs`: the DOFs `flexibility()` will be asked about, ordered last (CHOLMOD);
+  /// `interface_dofs`: the DOFs `flexibility()` will be asked about, ordered last (CHOLMOD)
+  /// or whose Schur complement is formed (MUMPS in one process);
   /// `linear`: who solves K0. Throws InputError when the body is not restrained (K0 singular).
   ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
                  const std::vector<int>& interface_dofs = {}, const LinearSolverParams& linear = {});
@@ -32,11 +34,12 @@ class ElasticProblem {
   /// P K0^-1 P^T (prescribed displacements zero) for a P that reads only interface DOFs:
   /// with S = L_CC L_CC^T the Schur complement of the interface DOFs, (K0^-1)_CC = S^-1 and
   /// P K0^-1 P^T = G^T G with G = L_CC^-1 P_C^T: one dense triangular solve (docs/MODEL.md s4).
-  /// Without a trailing block (PETSc): one solve per row of P.
+  /// The same from MUMPS's Schur complement; without either (CG, mpirun): one solve per row of P.
   Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
 
-  /// P K0^-1 P^T Y for a block of columns Y, by sparse solves: the flexibility's products
-  /// without forming it (any ordering of the factor).
+  /// P K0^-1 P^T Y for a block of columns Y, the flexibility's products without forming it:
+  /// from MUMPS's Schur complement by two dense triangular solves, else by sparse solves
+  /// (any ordering of the factor).
   Eigen::MatrixXd flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const;
 
   std::string solver_name() const { return solver_->name(); }
@@ -50,7 +53,12 @@ class ElasticProblem {
   std::vector<int> free_index_;  // global DOF -> index among free DOFs, or -1
   SparseMatrix K0_FD_;
   std::unique_ptr<SpdSolver> solver_;
+  /// P_C^T: the rows of P (columns) as forces on the free interface DOFs in `order` (rows).
+  SparseMatrix interface_forces(const SparseMatrix& P, const std::vector<int>& order) const;
+
+  std::vector<int> interface_free_;  // the free interface DOFs (free indices, sorted)
   const CholmodFactor* trailing_ = nullptr;  // solver_ when it ordered the interface DOFs last
+  const Eigen::MatrixXd* schur_ = nullptr;   // the Cholesky factor of their Schur complement (MUMPS)
 };
 
 }  // namespace rccm
