@@ -85,13 +85,9 @@ SparseMatrix ElasticProblem::interface_forces(const SparseMatrix& P, const std::
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
-  if (!trailing_ && !schur_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
-  Eigen::MatrixXd G = trailing_ ? Eigen::MatrixXd(interface_forces(P, trailing_->trailing_order()))
-                                : Eigen::MatrixXd(interface_forces(P, interface_free_));  // P_C^T
-  if (trailing_)
-    trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
-  else
-    schur_->triangularView<Eigen::Lower>().solveInPlace(G);
+  if (!trailing_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
+  Eigen::MatrixXd G = interface_forces(P, trailing_->trailing_order());  // P_C^T
+  trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
   Eigen::MatrixXd W = Eigen::MatrixXd::Zero(P.rows(), P.rows());
   W.selfadjointView<Eigen::Lower>().rankUpdate(G.transpose());
   return W.selfadjointView<Eigen::Lower>();

@@ -239,12 +239,9 @@ bool PetscSolver::take_schur_factor() {
   for (PetscInt j = 0; j < c && lower_empty; ++j)
     for (PetscInt i = j + 1; i < c; ++i) schur_factor_(i, j) = schur_factor_(j, i);
   Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(schur_factor_);  // in place
-  if (llt.info() != Eigen::Success) {
-    schur_factor_.resize(0, 0);
-    return false;
-  }
-  schur_factor_.triangularView<Eigen::StrictlyUpper>().setZero();
-  return true;
+  if (llt.info() == Eigen::Success) return true;  // L in the lower triangle (the upper one is never read)
+  schur_factor_.resize(0, 0);
+  return false;
 }
 
 Eigen::MatrixXd PetscSolver::solve(const Eigen::MatrixXd& b) const {

@@ -30,9 +30,10 @@ class PetscSolver : public SpdSolver {
   /// CG iterations of all solves so far (0 for MUMPS).
   long iterations() const { return iterations_; }
 
-  /// The lower Cholesky factor L of the Schur complement S = A_CC - A_CI A_II^-1 A_IC on the
-  /// indices C = `last` (rows and columns in that order), so (A^-1)_CC = (L L^T)^-1; nullptr
-  /// where MUMPS did not form S (CG, several processes, no `last`, S beyond the memory).
+  /// The Cholesky factor L of the Schur complement S = A_CC - A_CI A_II^-1 A_IC on the indices
+  /// C = `last` (rows and columns in that order), so (A^-1)_CC = (L L^T)^-1: in the lower
+  /// triangle (the upper one keeps S's); nullptr where MUMPS did not form S (CG, several
+  /// processes, no `last`, S beyond the memory).
   const Eigen::MatrixXd* schur_factor() const { return schur_factor_.size() ? &schur_factor_ : nullptr; }
 
  private:
