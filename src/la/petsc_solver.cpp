@@ -8,6 +8,7 @@
 #include <petscksp.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
 
 namespace rccm {
@@ -43,9 +44,12 @@ void refuse_if_failed(Mat factor, bool out_of_core) {
   std::ostringstream m;
   m << "the factorization of the body's stiffness by MUMPS failed (INFOG(1) = " << status << ", INFOG(2) = " << detail
     << "; the MUMPS users' guide lists the codes)";
-  if (out_of_core)
-    m << "; out of core (solver.out_of_core) it writes its factor to MUMPS_OOC_TMPDIR, else /tmp: check that "
-         "directory's free space";
+  if (out_of_core) {
+    const char* dir = std::getenv("MUMPS_OOC_TMPDIR");
+    m << "; out of core (solver.out_of_core) it writes its factor to " << (dir ? dir : "/tmp")
+      << (dir ? " (MUMPS_OOC_TMPDIR)" : " (MUMPS_OOC_TMPDIR unset)")
+      << ": check that this directory exists, is writable and has room for the factor";
+  }
   throw SolveError(m.str());
 }
 
