@@ -235,14 +235,7 @@ bool PetscSolver::take_schur_factor() {
   schur_factor_ = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>(a, c, c, Eigen::OuterStride<>(lda));
   check(MatDenseRestoreArrayRead(S, &a), "MatDenseRestoreArrayRead");
   MatDestroy(&S);
-  // MUMPS gives a symmetric S whole or as one triangle: the lower one is factorized, taken
-  // from the upper where the lower is empty.
-  bool lower_empty = true;
-  for (PetscInt j = 0; j < c && lower_empty; ++j)
-    for (PetscInt i = j + 1; i < c && lower_empty; ++i) lower_empty = schur_factor_(i, j) == 0;
-  for (PetscInt j = 0; j < c && lower_empty; ++j)
-    for (PetscInt i = j + 1; i < c; ++i) schur_factor_(i, j) = schur_factor_(j, i);
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(schur_factor_);  // in place
+  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(schur_factor_);  // in place; PETSc gives S's lower triangle
   if (llt.info() == Eigen::Success) return true;  // L in the lower triangle (the upper one is never read)
   schur_factor_.resize(0, 0);
   return false;
