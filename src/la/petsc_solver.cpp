@@ -19,11 +19,10 @@ void check(PetscErrorCode e, const char* call) {
   if (e != 0) throw InternalError(std::string("PETSc: ") + call + " failed with error " + std::to_string(e));
 }
 
-/// MUMPS stopped for memory (INFOG(1): -19 over ICNTL(23), -9 and -13 out of memory): said
-/// with its own estimate, INFOG(16) MB per process.
-void refuse_if_short_of_memory(Mat factor, PetscInt n) {
-  PetscInt status = 0, megabytes = 0;
-  check(MatMumpsGetInfog(factor, 1, &status), "MatMumpsGetInfog");
+/// MUMPS stopped for memory (`status` = INFOG(1): -19 over ICNTL(23), -9 and -13 out of
+/// memory): said with its own estimate, INFOG(16) MB per process.
+void refuse_if_short_of_memory(Mat factor, PetscInt status, PetscInt n) {
+  PetscInt megabytes = 0;
   if (status != -19 && status != -9 && status != -13) return;
   check(MatMumpsGetInfog(factor, 16, &megabytes), "MatMumpsGetInfog");
   std::ostringstream m;
@@ -34,11 +33,10 @@ void refuse_if_short_of_memory(Mat factor, PetscInt n) {
   throw MemoryShortfall(m.str());
 }
 
-/// MUMPS failed otherwise than for memory or a singular matrix (INFOG(1) < 0): said with its
-/// codes; out of core, the usual cause is the disk.
-void refuse_if_failed(Mat factor, bool out_of_core) {
-  PetscInt status = 0, detail = 0;
-  check(MatMumpsGetInfog(factor, 1, &status), "MatMumpsGetInfog");
+/// MUMPS failed otherwise than for memory or a singular matrix (`status` = INFOG(1) < 0): said
+/// with its codes; out of core, the usual cause is the disk.
+void refuse_if_failed(Mat factor, PetscInt status, bool out_of_core) {
+  PetscInt detail = 0;
   if (status >= 0 || status == -10 || status == -40) return;  // -10, -40: singular, said by the caller
   check(MatMumpsGetInfog(factor, 2, &detail), "MatMumpsGetInfog");
   std::ostringstream m;
@@ -198,10 +196,10 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
   check(KSPSetFromOptions(p.ksp), "KSPSetFromOptions");  // PETSC_OPTIONS
   check(KSPSetUp(p.ksp), "KSPSetUp");                     // MUMPS factorizes here
   if (kind == LinearSolver::Mumps) {
-    refuse_if_short_of_memory(p.factor, n);
-    refuse_if_failed(p.factor, params.out_of_core);
-    PetscInt status = 0;
+    PetscInt status = 0;  // INFOG(1): < 0 where the factorization failed
     check(MatMumpsGetInfog(p.factor, 1, &status), "MatMumpsGetInfog");
+    refuse_if_short_of_memory(p.factor, status, n);
+    refuse_if_failed(p.factor, status, params.out_of_core);
     if (status < 0) return;  // singular: not ok
   }
   check(MatCreateVecs(p.A, &p.x, &p.b), "MatCreateVecs");
