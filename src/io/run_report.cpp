@@ -90,7 +90,12 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
       << " s)" << (r.restarted_at >= 0 ? " since the restart at t = " + fmt("%g", r.restarted_at) + " s" : "") << "\n"
       << "  of it: contact solves   " << fmt("%.3f", r.solves.seconds) << " s ("
       << fmt("%.3g", 1e3 * r.solves.seconds / double(std::max(1L, r.solves.contact_solves))) << " ms each), "
-      << r.body_solves << " solves of the body " << fmt("%.3f", r.body_solve_seconds) << " s\n";
+      << r.body_solves << " solves of the body " << fmt("%.3f", r.body_solve_seconds) << " s\n"
+      << "  small-strain checks     " << r.strain_checks
+      << (r.strain_checks_left_out ? " (" + std::to_string(r.strain_checks_left_out) +
+                                         " left out: their solves of the body would have passed a tenth of the run)"
+                                   : std::string())
+      << "\n";
 
   const EnergyTerms& e = r.energy;
   const bool rate_independent = cfg.integrator.method == Method::RateIndependent;
@@ -175,6 +180,8 @@ void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r)
                        {"contact_solve_seconds", r.solves.seconds},
                        {"body_solves", r.body_solves},
                        {"body_solve_seconds", r.body_solve_seconds},
+                       {"strain_checks", r.strain_checks},
+                       {"strain_checks_left_out", r.strain_checks_left_out},
                        {"wall_seconds", r.wall_seconds},
                        {"restarted_at", r.restarted_at},
                        {"setup_seconds", r.setup_seconds},

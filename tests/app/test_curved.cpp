@@ -26,6 +26,7 @@
 #include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 using namespace rccm;
@@ -489,6 +490,37 @@ TEST_CASE("config/coating-curved.cfg lifted 4 mm instead of 1: the run notes onc
   const auto at = std::find_if(fraction.begin(), fraction.end(), [&](const auto& f) { return std::abs(f.first - t_note) < 1e-5; });
   REQUIRE(at != fraction.end());
   CHECK(at->second > 0.01);
+  CHECK(r.strain_checks_left_out == 0);  // the body's solves: a sliver of the run
+}
+
+TEST_CASE("the small-strain checks given no share of the run: checked only where the body is solved anyway",
+          "[curved]") {
+  // The same lifted coating, its checks' solves allowed none of the run's time (as for a body
+  // whose solve takes minutes): checked at step 0 (its frame), at the output times 2 and 5 s
+  // and at T, whose solves are made anyway; each check due in between is left out, and the
+  // note comes at the first of those times beyond the limit. Allowed all of the run: every
+  // check due is made, the note within T / 50 of the first step beyond.
+  const Config cfg = coating_curved({"loads.[0].value=4.0"});
+  RunOptions none;
+  none.strain_check_share = 0;
+  const RunResult r = Simulation(cfg, none).run();
+  RunOptions all;
+  all.strain_check_share = std::numeric_limits<double>::infinity();
+  const RunResult s = Simulation(cfg, all).run();
+  REQUIRE(r.stopped.empty());
+  REQUIRE(r.warnings.size() == 1);
+  REQUIRE(s.warnings.size() == 1);
+  const double t_none = std::stod(r.warnings[0].substr(4)), t_all = std::stod(s.warnings[0].substr(4));
+  INFO("noted at t = " << t_all << " s with every check, at " << t_none << " s with none of the run for them");
+  CHECK((t_none == 2.0 || t_none == 5.0 || t_none == cfg.time.T));
+  CHECK(t_none >= t_all);
+  CHECK(t_all < t_none);  // beyond the limit before 2 s, 5 s or T: within T / 50 of its first step
+  CHECK(r.strain_checks == 1 + int(t_none >= 2.0) + int(t_none >= 5.0) + int(t_none >= cfg.time.T));
+  CHECK(r.strain_checks_left_out >= 49 * t_none / cfg.time.T - 1);  // due every T / 50 until the note
+  CHECK(r.strain_checks_left_out <= 50 * t_none / cfg.time.T);
+  CHECK(r.body_solves == 4);  // step 0, 2 s, 5 s, T: none for a check
+  CHECK(s.strain_checks_left_out == 0);
+  CHECK(s.strain_checks >= 50 * t_all / cfg.time.T);
 }
 
 TEST_CASE("a curved interface turned about a point (mesh, circle centre and pull): the same beta, u and Rbar at every "

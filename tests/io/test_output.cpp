@@ -174,6 +174,9 @@ TEST_CASE("a frame at every step solves the body once per accepted state: the be
   std::ifstream json(dir / "report.json");
   const nlohmann::json report = nlohmann::json::parse(json);
   CHECK(report["body_solves"].get<long>() == r.integrator.steps + 1);
+  CHECK(r.strain_checks == r.integrator.steps + 1);  // each state's body solved anyway: checked at every step
+  CHECK(report["strain_checks"].get<long>() == r.strain_checks);
+  CHECK(report["strain_checks_left_out"].get<long>() == 0);
   CHECK(report["contact_solve_seconds"].get<double>() == r.solves.seconds);
   CHECK(r.solves.seconds + r.body_solve_seconds + r.setup_seconds < r.wall_seconds);
   fs::remove_all(dir);

@@ -32,6 +32,9 @@ struct RunOptions {
   bool restart = false;              // go on from output.directory/checkpoint.txt (Checkpoint)
   BetaOde::Observer observer;        // called after each accepted step (tests)
   std::string label;                 // said before its notes on stderr (a sweep's case: "alpha=0.1")
+  /// The small-strain checks' solves of the body take at most this share of the run's time
+  /// after its setup (their check at T and those at a frame's solve excepted).
+  double strain_check_share = 0.1;
 };
 
 class Recorder {

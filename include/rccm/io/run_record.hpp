@@ -35,7 +35,7 @@ struct StepRecord {
 struct RunNotes {
   std::vector<std::string> said;      // each once, in order; the report's warnings repeat them
   bool deformation_noted = false;     // the small-strain note is among them
-  double deformation_checked = -1e300;  // the time small strains were last checked, s
+  double deformation_checked = -1e300;  // the last time small strains were due to be checked, s
 };
 
 struct RunResult {
@@ -57,6 +57,8 @@ struct RunResult {
   double setup_seconds = 0, wall_seconds = 0;  // of this process: a restart's since it restarted
   long body_solves = 0;                         // full displacements solved (frames, output times, strain checks)
   double body_solve_seconds = 0;                // their wall time: the body's solve phase, one right-hand side
+  long strain_checks = 0;                       // small-strain checks made (Recorder::note_deformation)
+  long strain_checks_left_out = 0;              // and left out: their solves would pass RunOptions::strain_check_share
   double restarted_at = -1;                     // the checkpoint's time a restart went on from; -1: none
 };
 
