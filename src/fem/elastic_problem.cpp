@@ -47,7 +47,7 @@ ElasticProblem::ElasticProblem(const SparseMatrix& K, const SparseMatrix& spring
   last.erase(std::unique(last.begin(), last.end()), last.end());
   solver_ = make_spd_solver(K0_FF, linear, last);
   if (!last.empty()) trailing_ = dynamic_cast<const CholmodFactor*>(solver_.get());
-  if (const auto* petsc = dynamic_cast<const PetscSolver*>(solver_.get())) schur_ = petsc->schur_factor();
+  if (const auto* petsc = dynamic_cast<const PetscSolver*>(solver_.get())) inverse_ = petsc->interface_inverse();
   // A floating body gives a zero pivot or, in floating point, a tiny one; so do stiffnesses
   // that differ by more than double precision can hold (Cn = 1e30 against E = 1e3).
   if (!solver_->ok() || solver_->rcond() < 1e-14) {
@@ -94,12 +94,10 @@ Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const {
-  if (schur_) {  // P_C S^-1 P_C^T Y, S = L L^T
+  if (inverse_) {  // P_C (K0^-1)_CC P_C^T Y
     const SparseMatrix Pt = interface_forces(P, interface_free_);
-    Eigen::MatrixXd X = Pt * Y;
-    schur_->triangularView<Eigen::Lower>().solveInPlace(X);
-    schur_->transpose().triangularView<Eigen::Upper>().solveInPlace(X);
-    return Pt.transpose() * X;
+    const Eigen::MatrixXd X = Pt * Y;
+    return Pt.transpose() * (*inverse_ * X);
   }
   // By blocks of columns, the forces P^T Y gathered onto the free DOFs directly (the prescribed
   // ones: zero displacement, their forces unread). The blocks are as wide as 128 MB of forces

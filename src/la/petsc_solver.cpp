@@ -7,6 +7,7 @@
 #include <Eigen/Cholesky>
 #include <petscksp.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -60,7 +61,7 @@ struct PetscSolver::Impl {
   Vec b = nullptr, x = nullptr, x_all = nullptr;  // x_all: the whole solution on every process
   VecScatter to_all = nullptr;
   PetscInt lo = 0, hi = 0;  // this process's rows
-  bool schur = false;       // MUMPS forms the Schur complement on `last`
+  bool inverse = false;     // MUMPS computes the entries (A^-1)_CC, C = `last`
 
   ~Impl() {
     VecScatterDestroy(&to_all);
@@ -173,20 +174,11 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
     const double per_process = available_memory() / parallel::size() / 1e6;
     if (per_process < 1e9) check(MatMumpsSetIcntl(p.factor, 23, static_cast<PetscInt>(std::max(1.0, per_process))), "MatMumpsSetIcntl");
     if (params.out_of_core) check(MatMumpsSetIcntl(p.factor, 22, 1), "MatMumpsSetIcntl");
-    // The Schur complement on `last` (dense, c x c), formed by the factorization as its last
-    // front; PETSc keeps the full solves whole around it. One process only (PETSc's support),
-    // and where it takes at most a quarter of the memory: about 80 c^2 bytes (measured: 3.2 GB
-    // more than the solves' peak at c = 6348; S, PETSc's factor of it, ours, MUMPS's front).
+    // The entries (A^-1)_CC on `last` (dense, c x c), asked of MUMPS after its factorization.
+    // One process only (PETSc's support), and where they take at most a quarter of the memory:
+    // 20 c^2 bytes while they are computed (the request's pattern and values, then ours).
     const double c = double(last.size());
-    if (!last.empty() && parallel::size() == 1 && 80 * c * c <= available_memory() / 4) {
-      const std::vector<PetscInt> indices(last.begin(), last.end());
-      IS schur_indices = nullptr;
-      check(ISCreateGeneral(PETSC_COMM_SELF, PetscInt(indices.size()), indices.data(), PETSC_COPY_VALUES, &schur_indices),
-            "ISCreateGeneral");
-      check(MatFactorSetSchurIS(p.factor, schur_indices), "MatFactorSetSchurIS");
-      ISDestroy(&schur_indices);
-      p.schur = true;
-    }
+    p.inverse = !last.empty() && parallel::size() == 1 && 20 * c * c <= available_memory() / 4;
   } else {
     check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
     check(PCSetType(pc, PCGAMG), "PCSetType");
@@ -204,7 +196,6 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
   }
   check(MatCreateVecs(p.A, &p.x, &p.b), "MatCreateVecs");
   check(VecScatterCreateToAll(p.x, &p.to_all, &p.x_all), "VecScatterCreateToAll");
-  if (!take_schur_factor()) return;  // S not positive definite: a floating structure
 
   // Positive definite? A failed factorization (a zero pivot) or a floating structure shows in
   // the residual of a solve whose right-hand side has a part in every direction.
@@ -216,28 +207,49 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
   if (!ok_) return;
   const Eigen::VectorXd d = Eigen::VectorXd(A.diagonal()).cwiseAbs();
   rcond_ = d.minCoeff() / d.maxCoeff();
+  if (p.inverse) take_interface_inverse(last);
 }
 
 PetscSolver::~PetscSolver() = default;
 
-bool PetscSolver::take_schur_factor() {
-  Impl& p = *impl_;
-  if (!p.schur) return true;
-  Mat S = nullptr;
-  MatFactorSchurStatus state;
-  check(MatFactorCreateSchurComplement(p.factor, &S, &state), "MatFactorCreateSchurComplement");
-  PetscInt c = 0, lda = 0;
-  check(MatGetSize(S, &c, nullptr), "MatGetSize");
-  check(MatDenseGetLDA(S, &lda), "MatDenseGetLDA");
-  const PetscScalar* a = nullptr;
-  check(MatDenseGetArrayRead(S, &a), "MatDenseGetArrayRead");
-  schur_factor_ = Eigen::Map<const Eigen::MatrixXd, 0, Eigen::OuterStride<>>(a, c, c, Eigen::OuterStride<>(lda));
-  check(MatDenseRestoreArrayRead(S, &a), "MatDenseRestoreArrayRead");
-  MatDestroy(&S);
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>, Eigen::Lower> llt(schur_factor_);  // in place; PETSc gives S's lower triangle
-  if (llt.info() == Eigen::Success) return true;  // L in the lower triangle (the upper one is never read)
-  schur_factor_.resize(0, 0);
-  return false;
+void PetscSolver::take_interface_inverse(const std::vector<int>& last) {
+  // MUMPS's entries of the inverse (ICNTL(30)): a sparse right-hand side per column of C, the
+  // forward solve pruned to the factor's paths from C to the root, the backward one to C.
+  const Impl& p = *impl_;
+  PetscInt n = 0;
+  check(MatGetSize(p.A, &n, nullptr), "MatGetSize");
+  const PetscInt c = static_cast<PetscInt>(last.size());
+  std::vector<PetscInt> per_row(n, 0), columns(last.begin(), last.end());
+  for (int i : last) per_row[i] = c;
+  Mat entries = nullptr;  // the pattern C x C asked for, then the entries
+  check(MatCreateSeqAIJ(PETSC_COMM_SELF, n, n, 0, per_row.data(), &entries), "MatCreateSeqAIJ");
+  const std::vector<PetscScalar> zeros(c, 0.0);
+  for (PetscInt row : columns)
+    check(MatSetValues(entries, 1, &row, c, columns.data(), zeros.data(), INSERT_VALUES), "MatSetValues");
+  check(MatAssemblyBegin(entries, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
+  check(MatAssemblyEnd(entries, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
+  // Columns of C per pass over the factor (ICNTL(27)), each 8 n bytes of MUMPS's work: 256 in
+  // core (33 s at c = 6348, n = 10^5, against 46 s by MUMPS's own 32 and 36 s by 2048); out of
+  // core, where each pass reads the factor from disk, as many as a quarter of the memory holds.
+  const double columns_in_memory = available_memory() / 4 / (8.0 * double(n));
+  const PetscInt block = out_of_core_ ? PetscInt(std::clamp(columns_in_memory, 256.0, 4096.0)) : 256;
+  PetscInt default_block = 0;
+  check(MatMumpsGetIcntl(p.factor, 27, &default_block), "MatMumpsGetIcntl");
+  check(MatMumpsSetIcntl(p.factor, 27, block), "MatMumpsSetIcntl");
+  check(MatMumpsGetInverseTranspose(p.factor, entries), "MatMumpsGetInverseTranspose");
+  check(MatMumpsSetIcntl(p.factor, 30, 0), "MatMumpsSetIcntl");  // the later solves: whole ones
+  check(MatMumpsSetIcntl(p.factor, 27, default_block), "MatMumpsSetIcntl");
+  interface_inverse_.resize(c, c);
+  for (PetscInt k = 0; k < c; ++k) {
+    PetscInt count = 0;
+    const PetscInt* cols = nullptr;
+    const PetscScalar* values = nullptr;
+    check(MatGetRow(entries, columns[k], &count, &cols, &values), "MatGetRow");
+    RCCM_VERIFY(count == c, "MUMPS's inverse entries: one per column of C");
+    std::copy(values, values + c, interface_inverse_.col(k).data());  // symmetric: row k as column k
+    check(MatRestoreRow(entries, columns[k], &count, &cols, &values), "MatRestoreRow");
+  }
+  MatDestroy(&entries);
 }
 
 Eigen::MatrixXd PetscSolver::solve(const Eigen::MatrixXd& b) const {
@@ -266,7 +278,8 @@ std::string PetscSolver::name() const {
   std::string name = std::string(kind_ == LinearSolver::Mumps ? "PETSc MUMPS" : "PETSc CG + GAMG") + " on " +
                      std::to_string(procs) + (procs == 1 ? " process" : " processes");
   if (out_of_core_) name += ", out of core";
-  if (schur_factor_.size()) name += ", with the Schur complement on " + std::to_string(schur_factor_.rows()) + " interface DOFs";
+  if (interface_inverse_.size())
+    name += ", with the inverse's entries on " + std::to_string(interface_inverse_.rows()) + " interface DOFs";
   return name;
 }
 

@@ -183,8 +183,8 @@ Model::Model(const Config& cfg, Mesh mesh)
   check_restrained(cfg);
   follow_beta_ = cfg.solver.springs_follow_beta;
   linear_ = cfg.solver.linear;
-  // The interface's DOFs: ordered last by CHOLMOD for a dense W0; MUMPS forms their Schur
-  // complement (one process), so that a compressed W0's products need no solve of the body.
+  // The interface's DOFs: ordered last by CHOLMOD for a dense W0; MUMPS computes K0^-1's
+  // entries on them (one process), so that a compressed W0's products need no solve of the body.
   if (!compress_W0_ || chosen_linear_solver(linear_.kind) == LinearSolver::Mumps)
     for (const ContactPair& c : interface_.pairs)
       for (int node : {c.node, c.opposite})

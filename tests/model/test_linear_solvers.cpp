@@ -1,5 +1,5 @@
 // The body's solves by PETSc (MUMPS, CG + GAMG) against CHOLMOD: the same displacements, the
-// same W0 and free responses, from MUMPS's Schur complement on the interface and from its
+// same W0 and free responses, from MUMPS's entries of K0^-1 on the interface and from its
 // solves, in core and out of core; a floating body refused by each. One process here; the
 // same under mpirun -np 2 is tests/check_mpi.py.
 #include "helpers.hpp"
@@ -76,12 +76,12 @@ TEST_CASE("W0 and the free responses from MUMPS's solves equal those from CHOLMO
   const Model mumps = test::make_model(test::config_from_text(kLayer, {"solver.linear=\"mumps\""}));
   const Model mumps_compressed = test::make_model(
       test::config_from_text(kLayer, {"solver.linear=\"mumps\"", "solver.compressed_min_nodes=0"}));
-  // Dense: CHOLMOD's from the trailing block of its factor, MUMPS's from its Schur complement.
+  // Dense: CHOLMOD's from the trailing block of its factor, MUMPS's from K0^-1's entries.
   const Eigen::MatrixXd& W0 = *cholmod.condensation().W0().dense();
-  REQUIRE(mumps.linear_solver() == "PETSc MUMPS on 1 process, with the Schur complement on 130 interface DOFs");
+  REQUIRE(mumps.linear_solver() == "PETSc MUMPS on 1 process, with the inverse's entries on 130 interface DOFs");
   REQUIRE(mumps.condensation().W0().dense() != nullptr);
   CHECK(relative(*mumps.condensation().W0().dense(), W0) <= 1e-12);
-  // Compressed from products with the Schur complement's factor: to the compression's accuracy.
+  // Compressed from products with those entries: to the compression's accuracy.
   const DelassusOperator& W0c = mumps_compressed.condensation().W0();
   REQUIRE(W0c.compressed() != nullptr);
   REQUIRE(mumps_compressed.linear_solver() == mumps.linear_solver());  // its products need no solve of the body
@@ -98,35 +98,34 @@ TEST_CASE("a floating body is refused whichever solver factorizes it", "[petsc]"
   for (LinearSolver kind : {LinearSolver::Cholmod, LinearSolver::Mumps, LinearSolver::CgGamg})
     CHECK_THROWS_WITH(ElasticProblem(model.stiffness(), no_springs, {}, {}, solver(kind)),
                       Catch::Contains("not restrained"));
-  // With the interface's Schur complement, the rest of the body is held by the interface's
-  // DOFs: the floating modes are in S alone.
+  // Asked for K0^-1's entries on the interface too: refused before them.
   CHECK_THROWS_WITH(ElasticProblem(model.stiffness(), no_springs, {}, read_dofs(model.interface().P),
                                    solver(LinearSolver::Mumps)),
                     Catch::Contains("not restrained"));
 }
 
-TEST_CASE("MUMPS's Schur complement on the interface gives W0 and its products as its solves do", "[petsc]") {
+TEST_CASE("MUMPS's entries of K0^-1 on the interface give W0 and its products as its solves do", "[petsc]") {
   const Model model = test::make_model(test::config_from_text(kLayer));
   const Eigen::VectorXd one = Eigen::VectorXd::Ones(model.contact_nodes());
   const SparseMatrix springs = model.interface().springs(one, one);
   const SparseMatrix& P = model.interface().P;
   const std::vector<int> dofs = read_dofs(P);
   const ElasticProblem cholmod(model.stiffness(), springs, model.supports(), dofs, solver(LinearSolver::Cholmod));
-  const ElasticProblem schur(model.stiffness(), springs, model.supports(), dofs, solver(LinearSolver::Mumps));
+  const ElasticProblem entries(model.stiffness(), springs, model.supports(), dofs, solver(LinearSolver::Mumps));
   const ElasticProblem solves(model.stiffness(), springs, model.supports(), {}, solver(LinearSolver::Mumps));
-  REQUIRE(schur.solver_name() == "PETSc MUMPS on 1 process, with the Schur complement on 130 interface DOFs");
+  REQUIRE(entries.solver_name() == "PETSc MUMPS on 1 process, with the inverse's entries on 130 interface DOFs");
   REQUIRE(solves.solver_name() == "PETSc MUMPS on 1 process");
   const Eigen::MatrixXd W = cholmod.flexibility(P);
-  CHECK(relative(schur.flexibility(P), W) <= 1e-12);
+  CHECK(relative(entries.flexibility(P), W) <= 1e-12);
   CHECK(relative(solves.flexibility(P), W) <= 1e-12);
   const Eigen::MatrixXd Y = Eigen::MatrixXd::Random(P.rows(), 5);
-  CHECK(relative(schur.flexibility_products(P, Y), W * Y) <= 1e-12);
+  CHECK(relative(entries.flexibility_products(P, Y), W * Y) <= 1e-12);
   CHECK(relative(solves.flexibility_products(P, Y), W * Y) <= 1e-12);
-  // The body's full solves around S (condensed on it, S solved, expanded) as CHOLMOD's.
+  // The body's full solves after the entries (MUMPS's ICNTL(30) set back) as CHOLMOD's.
   const Eigen::Index n = model.stiffness().rows();
   Eigen::MatrixXd f = Eigen::MatrixXd::Random(n, 2), u_prescribed = Eigen::MatrixXd::Zero(n, 2);
   for (int d : model.supports()) u_prescribed.row(d).setConstant(0.01);
-  CHECK(relative(schur.solve(f, u_prescribed), cholmod.solve(f, u_prescribed)) <= 1e-11);
+  CHECK(relative(entries.solve(f, u_prescribed), cholmod.solve(f, u_prescribed)) <= 1e-11);
 }
 
 TEST_CASE("MUMPS out of core keeps its factor in MUMPS_OOC_TMPDIR and solves as in core", "[petsc]") {
@@ -142,7 +141,7 @@ TEST_CASE("MUMPS out of core keeps its factor in MUMPS_OOC_TMPDIR and solves as 
   const ElasticProblem cholmod(model.stiffness(), springs, model.supports(), read_dofs(P), solver(LinearSolver::Cholmod));
   {
     const ElasticProblem disk(model.stiffness(), springs, model.supports(), read_dofs(P), ooc);
-    CHECK(disk.solver_name() == "PETSc MUMPS on 1 process, out of core, with the Schur complement on 130 interface DOFs");
+    CHECK(disk.solver_name() == "PETSc MUMPS on 1 process, out of core, with the inverse's entries on 130 interface DOFs");
     CHECK(!std::filesystem::is_empty(dir));  // the factor's files
     CHECK(relative(disk.flexibility(P), cholmod.flexibility(P)) <= 1e-12);
     const Eigen::Index n = model.stiffness().rows();

@@ -2,7 +2,8 @@
 // springs added (docs/MODEL.md s4: K0 = K + sum_i P_i^T a_i diag(Ct, Cn) P_i), factorized once,
 // by CHOLMOD with the interface DOFs ordered last so that the flexibility P K0^-1 P^T comes
 // from the factor's trailing block (CholmodFactor), or by PETSc over the processes of the run
-// (la/spd_solver.hpp), whose MUMPS forms the interface DOFs' Schur complement in one process.
+// (la/spd_solver.hpp), whose MUMPS gives the entries of K0^-1 on the interface DOFs in one
+// process.
 #pragma once
 
 #include "rccm/la/cholmod_factor.hpp"
@@ -22,7 +23,7 @@ class ElasticProblem {
   /// `springs`: full-size sparse matrix added to K before elimination (the interface
   /// springs at beta = 1); `prescribed`: the Dirichlet DOFs (Mesh::dof numbering);
   /// `interface_dofs`: the DOFs `flexibility()` will be asked about, ordered last (CHOLMOD)
-  /// or whose Schur complement is formed (MUMPS in one process);
+  /// or on which K0^-1's entries are computed (MUMPS in one process);
   /// `linear`: who solves K0. Throws InputError when the body is not restrained (K0 singular).
   ElasticProblem(const SparseMatrix& K, const SparseMatrix& springs, std::vector<int> prescribed,
                  const std::vector<int>& interface_dofs = {}, const LinearSolverParams& linear = {});
@@ -38,8 +39,8 @@ class ElasticProblem {
   Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
 
   /// P K0^-1 P^T Y for a block of columns Y, the flexibility's products without forming it:
-  /// from MUMPS's Schur complement by two dense triangular solves, else by sparse solves
-  /// (any ordering of the factor).
+  /// P_C (K0^-1)_CC P_C^T Y from MUMPS's entries of the inverse, else by sparse solves (any
+  /// ordering of the factor).
   Eigen::MatrixXd flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const;
 
   std::string solver_name() const { return solver_->name(); }
@@ -58,7 +59,7 @@ class ElasticProblem {
 
   std::vector<int> interface_free_;  // the free interface DOFs (free indices, sorted)
   const CholmodFactor* trailing_ = nullptr;  // solver_ when it ordered the interface DOFs last
-  const Eigen::MatrixXd* schur_ = nullptr;   // the Cholesky factor of their Schur complement (MUMPS)
+  const Eigen::MatrixXd* inverse_ = nullptr;  // (K0^-1) on them, from MUMPS
 };
 
 }  // namespace rccm

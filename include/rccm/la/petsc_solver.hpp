@@ -1,8 +1,8 @@
 // The body's sparse SPD matrix solved by PETSc over all processes of the run: each process
 // holds a block of rows (MPIAIJ); MUMPS Cholesky (direct) or CG preconditioned by GAMG
 // (iterative, to a relative residual). MUMPS may keep its factor on disk (out of core), and in
-// one process forms the Schur complement on the interface's DOFs during its factorization, so
-// W0 needs no solve of the body. Options of PETSc's own (-ksp_monitor, -pc_type hypre,
+// one process computes the entries of A^-1 on the interface's DOFs after its factorization (its
+// ICNTL(30), pruned sparse solves), so W0 needs no solve of the body. Options of PETSc's own (-ksp_monitor, -pc_type hypre,
 // -mat_mumps_icntl_*) pass through the PETSC_OPTIONS environment variable.
 #pragma once
 
@@ -14,8 +14,8 @@ class PetscSolver : public SpdSolver {
  public:
   /// Collective: every process gives the same whole A (symmetric, both triangles) and keeps
   /// its own rows. `params.kind`: Mumps or CgGamg; `params.tolerance`: CG's relative residual;
-  /// `params.out_of_core`: MUMPS writes its factor to disk. `last`: indices whose Schur
-  /// complement MUMPS forms (one process, where it fits in memory; schur_factor()).
+  /// `params.out_of_core`: MUMPS writes its factor to disk. `last`: indices on which
+  /// MUMPS computes A^-1's entries (one process, where they fit in memory; interface_inverse()).
   PetscSolver(const SparseMatrix& A, const LinearSolverParams& params, const std::vector<int>& last = {});
   ~PetscSolver() override;
   PetscSolver(const PetscSolver&) = delete;
@@ -30,15 +30,13 @@ class PetscSolver : public SpdSolver {
   /// CG iterations of all solves so far (0 for MUMPS).
   long iterations() const { return iterations_; }
 
-  /// The Cholesky factor L of the Schur complement S = A_CC - A_CI A_II^-1 A_IC on the indices
-  /// C = `last` (rows and columns in that order), so (A^-1)_CC = (L L^T)^-1: in the lower
-  /// triangle (the upper one keeps S's); nullptr where MUMPS did not form S (CG, several
-  /// processes, no `last`, S beyond the memory).
-  const Eigen::MatrixXd* schur_factor() const { return schur_factor_.size() ? &schur_factor_ : nullptr; }
+  /// (A^-1)_CC on the indices C = `last` (rows and columns in that order); nullptr where MUMPS
+  /// did not compute it (CG, several processes, no `last`, beyond the memory).
+  const Eigen::MatrixXd* interface_inverse() const { return interface_inverse_.size() ? &interface_inverse_ : nullptr; }
 
  private:
-  /// MUMPS's S into schur_factor_, factorized; false if S is not positive definite.
-  bool take_schur_factor();
+  /// MUMPS's entries (A^-1)_CC into interface_inverse_.
+  void take_interface_inverse(const std::vector<int>& last);
 
   struct Impl;
   std::unique_ptr<Impl> impl_;
@@ -47,7 +45,7 @@ class PetscSolver : public SpdSolver {
   bool ok_ = false;
   double rcond_ = 0.0;
   mutable long iterations_ = 0;
-  Eigen::MatrixXd schur_factor_;
+  Eigen::MatrixXd interface_inverse_;
 };
 
 }  // namespace rccm

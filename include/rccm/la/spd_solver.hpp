@@ -33,7 +33,7 @@ class SpdSolver {
 LinearSolver chosen_linear_solver(LinearSolver kind);
 
 /// The solver of `params.kind` (chosen_linear_solver) for A (symmetric, both triangles stored).
-/// `last`: indices ordered last (CholmodFactor), or whose Schur complement MUMPS forms (PetscSolver).
+/// `last`: indices ordered last (CholmodFactor), or on which MUMPS computes A^-1's entries (PetscSolver).
 std::unique_ptr<SpdSolver> make_spd_solver(const SparseMatrix& A, const LinearSolverParams& params,
                                            const std::vector<int>& last = {});
 

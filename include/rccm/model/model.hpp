@@ -108,7 +108,7 @@ class Model {
   std::unique_ptr<BodyForms> forms_;
   bool follow_beta_ = false, compress_W0_ = false;
   LinearSolverParams linear_;
-  std::vector<int> interface_dofs_;  // ordered last in K0's factor (dense W0), or MUMPS's Schur complement's
+  std::vector<int> interface_dofs_;  // ordered last in K0's factor (dense W0), or K0^-1's entries on them (MUMPS)
   Eigen::VectorXd springs_beta_;
   Eigen::VectorXd D1_, Dref_, g0_;   // the springs at beta = 1 and those in W0
   std::vector<int> watched_, probes_;
