@@ -22,9 +22,6 @@ Eigen::MatrixXd unit_responses(const ElasticProblem& body, const std::vector<Loa
 
 std::unique_ptr<DelassusOperator> flexibility(const ElasticProblem& body, const Interface& interface, bool compress) {
   if (!compress) return std::make_unique<DenseDelassus>(body.flexibility(interface.P));
-  if (body.flexibility_without_solves())  // compressed from W0 itself: no peel of products
-    return std::make_unique<CompressedDelassus>(HodlrMatrix::symmetric(
-        body.flexibility(interface.P), tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim));
   const auto products = [&](const Eigen::MatrixXd& Y) { return body.flexibility_products(interface.P, Y); };
   return std::make_unique<CompressedDelassus>(HodlrMatrix::symmetric(
       interface.P.rows(), products, tuning::hodlr_accuracy, tuning::hodlr_leaf, interface.layout.dim));

@@ -85,11 +85,6 @@ SparseMatrix ElasticProblem::interface_forces(const SparseMatrix& P, const std::
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
-  if (inverse_) {
-    const SparseMatrix Pt = interface_forces(P, interface_free_);
-    const Eigen::MatrixXd ZPt = *inverse_ * Pt;
-    return Pt.transpose() * ZPt;
-  }
   if (!trailing_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
   Eigen::MatrixXd G = interface_forces(P, trailing_->trailing_order());  // P_C^T
   trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);
@@ -99,6 +94,11 @@ Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility_products(const SparseMatrix& P, const Eigen::MatrixXd& Y) const {
+  if (inverse_) {  // P_C (K0^-1)_CC P_C^T Y
+    const SparseMatrix Pt = interface_forces(P, interface_free_);
+    const Eigen::MatrixXd X = Pt * Y;
+    return Pt.transpose() * (*inverse_ * X);
+  }
   // By blocks of columns, the forces P^T Y gathered onto the free DOFs directly (the prescribed
   // ones: zero displacement, their forces unread). The blocks are as wide as 128 MB of forces
   // and displacements allow, 8 to 64 columns: wider blocks make the factor's solves matrix-matrix

@@ -402,24 +402,6 @@ HodlrMatrix HodlrMatrix::symmetric(Eigen::Index size, const Products& A, double 
   return H;
 }
 
-HodlrMatrix HodlrMatrix::symmetric(const Eigen::MatrixXd& A, double relative_tolerance, int leaf_size, int granule) {
-  HodlrMatrix H;
-  H.size_ = A.rows(), H.granule_ = granule;
-  H.root_ = bisections(0, H.size_, std::max(leaf_size, 2 * granule), granule);
-  const double tolerance = relative_tolerance * A.diagonal().cwiseAbs().maxCoeff();
-  std::mt19937 rng(20261125);
-  visit(*H.root_, [&](Node& n) {
-    if (n.leaf()) {
-      n.dense = A.block(n.begin, n.begin, n.end - n.begin, n.end - n.begin);
-      return;
-    }
-    const Eigen::Index mid = n.second->begin;
-    compress(A.block(mid, n.begin, n.end - mid, mid - n.begin), tolerance, rng, n.U21, n.V21);
-    n.mirrored = true;
-  });
-  return H;
-}
-
 Eigen::MatrixXd HodlrMatrix::diagonal_block(Eigen::Index first, Eigen::Index n) const {
   const Node* node = root_.get();
   while (!node->leaf()) node = first < node->second->begin ? node->first.get() : node->second.get();

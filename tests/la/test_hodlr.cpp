@@ -94,30 +94,6 @@ TEST_CASE("HODLR: a symmetric matrix compressed from its products alone (peeling
   CHECK((A * HodlrSolver(P).solve(b) - b).norm() <= 1e-10 * b.norm());
 }
 
-TEST_CASE("HODLR: a symmetric matrix compressed from itself stores each pair of blocks once, as peeling does", "[hodlr]") {
-  // The surface kernel's blocks (ranks falling slowly, as W0's on an interface surface), from
-  // the matrix at hand (MUMPS's entries of K0^-1): the same ranks as the peel of its products
-  // and as both blocks compressed, half the storage of the latter, the matrix to the tolerance.
-  const Eigen::MatrixXd A = surface_kernel(24);
-  const Eigen::Index m = A.rows();
-  const auto products = [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); };
-  const double relative = 1e-13, scale = A.diagonal().maxCoeff();
-  const HodlrMatrix S = HodlrMatrix::symmetric(A, relative, 32, 2);
-  const HodlrMatrix P = HodlrMatrix::symmetric(m, products, relative, 32, 2);
-  const HodlrMatrix D(A, relative * scale, 32, 2);
-  CHECK(S.granule() == 2);
-  CHECK(S.max_rank() <= D.max_rank() + 2);
-  CHECK(S.max_rank() >= P.max_rank() - 2);
-  CHECK(S.stored() <= P.stored() + P.stored() / 20);
-  CHECK(S.stored() < D.stored());
-  CHECK(S.diagonal_scale() == Approx(scale).epsilon(1e-13));
-  std::srand(5);
-  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(m, 3);
-  CHECK((S.multiply_block(X) - A * X).norm() <= 100 * relative * scale * X.norm());
-  for (Eigen::Index first : {0, 64, 300, 574})
-    CHECK((S.diagonal_block(first, 2) - A.block(first, first, 2, 2)).norm() <= 10 * relative * scale);
-}
-
 TEST_CASE("HODLR: peeling a matrix with rank-one and uncoupled blocks", "[hodlr]") {
   // diag(d) + u v^T symmetric (u = v): every off-diagonal block has rank one; with the halves
   // uncoupled, rank zero; the coarser levels' blocks must be subtracted exactly for the finer

@@ -81,10 +81,10 @@ TEST_CASE("W0 and the free responses from MUMPS's solves equal those from CHOLMO
   REQUIRE(mumps.linear_solver() == "PETSc MUMPS on 1 process, with the inverse's entries on 130 interface DOFs");
   REQUIRE(mumps.condensation().W0().dense() != nullptr);
   CHECK(relative(*mumps.condensation().W0().dense(), W0) <= 1e-12);
-  // Compressed from the W0 of those entries: to the compression's accuracy.
+  // Compressed from products with those entries: to the compression's accuracy.
   const DelassusOperator& W0c = mumps_compressed.condensation().W0();
   REQUIRE(W0c.compressed() != nullptr);
-  REQUIRE(mumps_compressed.linear_solver() == mumps.linear_solver());  // no solve of the body for W0
+  REQUIRE(mumps_compressed.linear_solver() == mumps.linear_solver());  // its products need no solve of the body
   const Eigen::VectorXd y = Eigen::VectorXd::Random(W0.rows());
   Eigen::VectorXd u(W0.rows());
   W0c.multiply(y, u);

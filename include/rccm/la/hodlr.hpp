@@ -41,9 +41,6 @@ class HodlrMatrix {
   /// stored once.
   static HodlrMatrix symmetric(Eigen::Index size, const Products& A, double relative_tolerance, int leaf_size,
                                int granule);
-  /// The same from the symmetric matrix A itself: each block A(second, first) compressed
-  /// (a range finder on its products), A(first, second) its mirror.
-  static HodlrMatrix symmetric(const Eigen::MatrixXd& A, double relative_tolerance, int leaf_size, int granule);
   ~HodlrMatrix();
   HodlrMatrix(HodlrMatrix&&) noexcept;
   HodlrMatrix& operator=(HodlrMatrix&&) noexcept;
