@@ -85,6 +85,11 @@ SparseMatrix ElasticProblem::interface_forces(const SparseMatrix& P, const std::
 }
 
 Eigen::MatrixXd ElasticProblem::flexibility(const SparseMatrix& P) const {
+  if (inverse_) {  // P_C Z P_C^T, Z = (K0^-1)_CC
+    const SparseMatrix Pt = interface_forces(P, interface_free_);
+    const Eigen::MatrixXd ZPt = *inverse_ * Pt;
+    return Pt.transpose() * ZPt;
+  }
   if (!trailing_) return flexibility_products(P, Eigen::MatrixXd::Identity(P.rows(), P.rows()));
   Eigen::MatrixXd G = interface_forces(P, trailing_->trailing_order());  // P_C^T
   trailing_->trailing_factor().triangularView<Eigen::Lower>().solveInPlace(G);

@@ -35,7 +35,8 @@ class ElasticProblem {
   /// P K0^-1 P^T (prescribed displacements zero) for a P that reads only interface DOFs:
   /// with S = L_CC L_CC^T the Schur complement of the interface DOFs, (K0^-1)_CC = S^-1 and
   /// P K0^-1 P^T = G^T G with G = L_CC^-1 P_C^T: one dense triangular solve (docs/MODEL.md s4).
-  /// Without a trailing block: flexibility_products() of the identity.
+  /// From MUMPS's entries Z = (K0^-1)_CC: P_C Z P_C^T, two sparse products. Otherwise:
+  /// flexibility_products() of the identity.
   Eigen::MatrixXd flexibility(const SparseMatrix& P) const;
 
   /// P K0^-1 P^T Y for a block of columns Y, the flexibility's products without forming it:
