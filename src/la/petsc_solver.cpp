@@ -4,7 +4,6 @@
 #include "rccm/base/memory.hpp"
 #include "rccm/la/parallel.hpp"
 
-#include <Eigen/Cholesky>
 #include <petscksp.h>
 
 #include <algorithm>

@@ -2,8 +2,9 @@
 // holds a block of rows (MPIAIJ); MUMPS Cholesky (direct) or CG preconditioned by GAMG
 // (iterative, to a relative residual). MUMPS may keep its factor on disk (out of core), and in
 // one process computes the entries of A^-1 on the interface's DOFs after its factorization (its
-// ICNTL(30), pruned sparse solves), so W0 needs no solve of the body. Options of PETSc's own (-ksp_monitor, -pc_type hypre,
-// -mat_mumps_icntl_*) pass through the PETSC_OPTIONS environment variable.
+// ICNTL(30), pruned sparse solves), so W0 needs no solve of the body. Options of PETSc's own
+// (-ksp_monitor, -pc_type hypre, -mat_mumps_icntl_*) pass through the PETSC_OPTIONS environment
+// variable.
 #pragma once
 
 #include "rccm/la/spd_solver.hpp"
