@@ -5,6 +5,7 @@
 #include "rccm/io/csv.hpp"
 #include "rccm/io/output_directory.hpp"
 #include "rccm/io/run_report.hpp"
+#include "rccm/la/parallel.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -209,7 +210,10 @@ void Recorder::note_deformation(const AcceptedStep& a) {
   for (double t_out : stop_times(cfg_.time.T, cfg_.output.times)) solved = solved || std::abs(a.t - t_out) <= 1e-12 * cfg_.time.T;
   if (!solved && a.t < notes_.deformation_checked + cfg_.time.T / deformation_checks) return;
   notes_.deformation_checked = a.t;
-  if (!solved && result_.body_solve_seconds > options_.strain_check_share * (seconds() - result_.setup_seconds)) {
+  // Each process's clock differs: under mpirun all leave the check out if one would, so that
+  // all join the check's solve or none does.
+  if (!solved && parallel::largest(result_.body_solve_seconds >
+                                   options_.strain_check_share * (seconds() - result_.setup_seconds))) {
     ++result_.strain_checks_left_out;
     return;
   }
