@@ -46,7 +46,10 @@ void progress_line(const AcceptedStep& a, double T) {
 }  // namespace
 
 Recorder::Recorder(const Config& cfg, RunOptions options)
-    : cfg_(cfg), options_(std::move(options)), start_(std::chrono::steady_clock::now()) {
+    : cfg_(cfg),
+      options_(std::move(options)),
+      stops_(stop_times(cfg.time.T, cfg.output.times)),
+      start_(std::chrono::steady_clock::now()) {
   if (!options_.restart) {
     if (options_.write_files) check_output_directory(cfg, options_.force);
     return;
@@ -207,7 +210,7 @@ void Recorder::note_deformation(const AcceptedStep& a) {
   // more than their share of the run.
   if (notes_.deformation_noted) return;
   bool solved = body_.u.size() != 0;
-  for (double t_out : stop_times(cfg_.time.T, cfg_.output.times)) solved = solved || std::abs(a.t - t_out) <= 1e-12 * cfg_.time.T;
+  for (double t_out : stops_) solved = solved || std::abs(a.t - t_out) <= 1e-12 * cfg_.time.T;
   if (!solved && a.t < notes_.deformation_checked + cfg_.time.T / deformation_checks) return;
   notes_.deformation_checked = a.t;
   // Each process's clock differs: under mpirun all leave the check out if one would, so that

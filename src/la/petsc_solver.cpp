@@ -60,7 +60,6 @@ struct PetscSolver::Impl {
   Vec b = nullptr, x = nullptr, x_all = nullptr;  // x_all: the whole solution on every process
   VecScatter to_all = nullptr;
   PetscInt lo = 0, hi = 0;  // this process's rows
-  bool inverse = false;     // MUMPS computes the entries (A^-1)_CC, C = `last`
 
   ~Impl() {
     VecScatterDestroy(&to_all);
@@ -159,6 +158,7 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
 
   check(KSPCreate(PETSC_COMM_WORLD, &p.ksp), "KSPCreate");
   check(KSPSetOperators(p.ksp, p.A, p.A), "KSPSetOperators");
+  bool inverse = false;  // MUMPS computes the entries (A^-1)_CC, C = `last`
   PC pc;
   check(KSPGetPC(p.ksp, &pc), "KSPGetPC");
   if (kind == LinearSolver::Mumps) {
@@ -177,7 +177,7 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
     // One process only (PETSc's support), and where they take at most a quarter of the memory:
     // 20 c^2 bytes while they are computed (the request's pattern and values, then ours).
     const double c = double(last.size());
-    p.inverse = !last.empty() && parallel::size() == 1 && 20 * c * c <= available_memory() / 4;
+    inverse = !last.empty() && parallel::size() == 1 && 20 * c * c <= available_memory() / 4;
   } else {
     check(KSPSetType(p.ksp, KSPCG), "KSPSetType");
     check(PCSetType(pc, PCGAMG), "PCSetType");
@@ -206,7 +206,7 @@ PetscSolver::PetscSolver(const SparseMatrix& A, const LinearSolverParams& params
   if (!ok_) return;
   const Eigen::VectorXd d = Eigen::VectorXd(A.diagonal()).cwiseAbs();
   rcond_ = d.minCoeff() / d.maxCoeff();
-  if (p.inverse) take_interface_inverse(last);
+  if (inverse) take_interface_inverse(last);
 }
 
 PetscSolver::~PetscSolver() = default;

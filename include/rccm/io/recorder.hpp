@@ -21,6 +21,7 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace rccm {
 
@@ -33,7 +34,8 @@ struct RunOptions {
   BetaOde::Observer observer;        // called after each accepted step (tests)
   std::string label;                 // said before its notes on stderr (a sweep's case: "alpha=0.1")
   /// The small-strain checks' solves of the body take at most this share of the run's time
-  /// after its setup (their check at T and those at a frame's solve excepted).
+  /// after its setup (the checks where the body is solved anyway excepted: frames, output
+  /// times, T).
   double strain_check_share = 0.1;
 };
 
@@ -87,6 +89,7 @@ class Recorder {
 
   const Config& cfg_;
   RunOptions options_;
+  const std::vector<double> stops_;  // the output times and T (stop_times): the body is solved there
   std::chrono::steady_clock::time_point start_;
   std::unique_ptr<Checkpoint> resume_;
   const Model* model_ = nullptr;
