@@ -8,6 +8,10 @@
 // error our default (bipotential Gauss-Seidel) solve reached, or 1e-10 (our tolerance) where
 // it went below that (Siconos cannot always reach round-off; docs/PERFORMANCE.md "The three contact
 // solvers against Siconos").
+// In 2D, where Siconos converges, the row "GS at Siconos' its": our plain Gauss-Seidel sweeps on
+// Siconos' own problem (for B1 and B2 the plain form, springs folded in), exactly as many as
+// its NSGS took. They are its iterations (the same reactions, tests/peer/test_siconos_peer.cpp),
+// so the same error: the ratio is the cost of an iteration, the algorithm being the same.
 // --copies K poses each later sparse file K times over, as K independent problems in one
 // (W block-diagonal): a size test of the sparse path (the solution is K copies of one).
 //
@@ -123,6 +127,24 @@ void to_siconos_error(const std::string& name, const PlainContactProblem& p, con
   row(label, pb.size(), "siconos-NSGS", n.iterations, n.error, siconos_seconds, 1.0, n.info == 0);
 }
 
+/// Our plain Gauss-Seidel sweeps (no extrapolation, no exact step) on the problem Siconos is
+/// given (the plain form), as many as Siconos' NSGS took: they are its iterations (the same
+/// reactions after each, to round-off: tests/peer), so the same error, and the ratio is the
+/// cost of an iteration. A tolerance no sweep reaches keeps them going; a problem solved
+/// exactly (every pair's residual 0) stops sooner.
+void same_iterations_row(const std::string& name, const PlainContactProblem& p, const peer::PeerSolution& n,
+                         double siconos_seconds) {
+  SolverParams params;
+  params.tolerance = 1e-30;
+  params.max_iterations = n.iterations;
+  params.anderson = 0;
+  params.active_set = false;
+  ContactSolution s;
+  const double seconds = cold_seconds(params, from_plain(p), s);
+  row(name, p.mu.size(), "GS at Siconos' its", s.iterations, peer::error(p, s.Rbar), seconds, siconos_seconds / seconds,
+      true);
+}
+
 /// Each of our solvers cold from zero, then Siconos NSGS at the error our default solve
 /// (bipotential Gauss-Seidel) reached; the last column is Siconos' time over each solver's.
 /// `settings`: the config's solver section (sweeps alone or the exact step, ...), else defaults.
@@ -157,6 +179,7 @@ double compare(const std::string& name, const PlainContactProblem& p, const Cont
   for (const Measured& m : ours)
     row(name, pb.size(), m.name, m.s.iterations, m.error, m.seconds, seconds / m.seconds, m.s.converged);
   row(name, pb.size(), "siconos-NSGS", n.iterations, n.error, seconds, 1.0, n.info == 0);
+  if (p.dim == 2 && n.info == 0) same_iterations_row(name, p, n, seconds);
   // Siconos solves the plain form, springs folded in: (I - W0 E)^-1 W0, a dense solve of m
   // right-hand sides that our solvers do without (their springs stay in the local solve).
   // Where the problem has springs, building that form is part of solving it with Siconos.

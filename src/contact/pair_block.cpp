@@ -14,7 +14,7 @@ namespace rccm {
 double largest_eigenvalue(const Eigen::Matrix<double, 1, 1>& S) { return S(0, 0); }
 double largest_eigenvalue(const Eigen::Matrix2d& S) {
   const double half_trace = 0.5 * (S(0, 0) + S(1, 1)), half_gap = 0.5 * (S(0, 0) - S(1, 1));
-  return half_trace + std::hypot(half_gap, S(0, 1));
+  return half_trace + hypot_fast(half_gap, S(0, 1));
 }
 double largest_eigenvalue(const Eigen::Matrix3d& S) {
   return Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S, Eigen::EigenvaluesOnly).eigenvalues()[2];
@@ -23,12 +23,11 @@ double largest_eigenvalue(const Eigen::Matrix3d& S) {
 template <int dim>
 void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<dim>>& blocks) {
   using Mat = typename PairBlock<dim>::Mat;
-  blocks.clear();
-  blocks.reserve(pb.size());
+  blocks.resize(pb.size());  // every member of each block is set below
   const double scale = pb.W0->diagonal_scale();
   const Eigen::MatrixXd* W = pb.W0->dense();
   for (int i = 0; i < pb.size(); ++i) {
-    PairBlock<dim> b;  // default-initialized: every member is set below
+    PairBlock<dim>& b = blocks[i];
     const Eigen::Index first = pb.layout.offset(i);
     if (W != nullptr)  // read in place: a copy through block()'s run-time sized matrix was a third of a pair's set-up
       b.Wii = W->template block<dim, dim>(first, first);
@@ -66,7 +65,6 @@ void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<d
       const double dmin = b.Wb.diagonal().minCoeff();
       b.rho = 1.0 / (dmin > 0 ? dmin : lmax);
     }
-    blocks.push_back(b);
   }
 }
 

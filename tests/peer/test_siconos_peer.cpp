@@ -22,15 +22,20 @@ SolverParams tight(ContactMethod method = ContactMethod::Bipotential) {
 }
 
 constexpr ContactMethod methods[] = {ContactMethod::Bipotential, ContactMethod::Rccm, ContactMethod::Newton};
+
+/// The folder of Siconos' test problems (shared/ beside the checkout), or "" with a warning.
+std::string siconos_data() {
+  const std::string dir = std::string(RCCM_SOURCE_DIR) + "/../shared/data/siconos-fc2d/";
+  if (std::ifstream(dir + "README.md")) return dir;
+  WARN("not checked: " << dir << " is missing (the shared/ folder lives beside the checkout)");
+  return "";
+}
 }  // namespace
 
 TEST_CASE("Siconos test problems: where Siconos NSGS converges, so do our solvers, and Newton also where it does not",
           "[peer]") {
-  const std::string dir = std::string(RCCM_SOURCE_DIR) + "/../shared/data/siconos-fc2d/";
-  if (!std::ifstream(dir + "README.md")) {
-    WARN("not checked: " << dir << " is missing (the shared/ folder lives beside the checkout)");
-    return;
-  }
+  const std::string dir = siconos_data();
+  if (dir.empty()) return;
   for (const char* f : {"FrictionContactProblem00394.dat", "FrictionContactProblem00031.dat",
                         "FrictionContactProblem00071.dat"}) {
     const PlainContactProblem p = peer::read_dat(dir + f);
@@ -58,13 +63,39 @@ TEST_CASE("Siconos test problems: where Siconos NSGS converges, so do our solver
   }
 }
 
+TEST_CASE("Our plain Gauss-Seidel sweeps are Siconos' NSGS iterations: after each the same reactions",
+          "[peer]") {
+  // Without extrapolation or exact step, the bipotential solver's sweep on a plain problem
+  // (2D: each pair's exact local solution, pairs in order, u updated after each) is the
+  // algorithm of Siconos' fc2d NSGS: the k-th iterates agree to round-off long before either
+  // converges. fc2d-bench's row "GS at Siconos' its" rests on it (the same work per solve).
+  const std::string dir = siconos_data();
+  if (dir.empty()) return;
+  for (const char* f : {"FrictionContactProblem00071.dat", "fc2d_granularflowonwall_00667_00000.dat"}) {
+    PlainContactProblem p = peer::read_dat(dir + f);  // 89 contacts dense; 667 sparse
+    p.q /= p.q.norm();
+    SolverParams params;
+    params.tolerance = 1e-30;  // reached by no sweep: each solve makes exactly k
+    params.anderson = 0;
+    params.active_set = false;
+    for (int k : {1, 2, 10, 40}) {
+      params.max_iterations = k;
+      const peer::PeerSolution n = peer::solve(p, "nsgs", 1e-30, k);
+      const ContactSolution s = make_contact_solver(params)->solve(from_plain(p), {}, {});
+      INFO(f << " after " << k << " iterations: siconos error " << n.error << ", ours " << peer::error(p, s.Rbar));
+      REQUIRE(n.iterations == k);
+      CHECK(s.iterations == k);
+      CHECK(n.error > 1e-10);  // far from round-off: the iterates themselves are compared
+      CHECK((s.Rbar - n.R).norm() <= 1e-12 * n.R.norm());
+    }
+  }
+}
+
 TEST_CASE("A large sparse Siconos problem stays sparse: Siconos' sparse NSGS and our bipotential solver agree",
           "[peer]") {
-  const std::string file = std::string(RCCM_SOURCE_DIR) + "/../shared/data/siconos-fc2d/fc2d_granularflowonwall_00667_00000.dat";
-  if (!std::ifstream(file)) {
-    WARN("not checked: " << file << " is missing (the shared/ folder lives beside the checkout)");
-    return;
-  }
+  const std::string dir = siconos_data();
+  if (dir.empty()) return;
+  const std::string file = dir + "fc2d_granularflowonwall_00667_00000.dat";
   PlainContactProblem p = peer::read_dat(file);  // 667 contacts, W stored sparse in the file
   REQUIRE(p.W->dense() == nullptr);
   // A snapshot at rest, |q| = 4e-18: scaled to |q| = 1 (the solution scales with q), where

@@ -11,7 +11,8 @@
 // The rows of the pairs whose status changed or whose beta moved (E, mubar) since then are a
 // low-rank (Sherman-Morrison-Woodbury) correction of that inverse, kept pending while their
 // count is small (c^2 m per solve) and folded into the inverse beyond (2 c m^2 once, instead
-// of the 2 m^3 of a new factorization and inverse). GMRES preconditioned by that corrected
+// of the 2 m^3 of a new factorization and inverse); where the inverse is not formed yet (a
+// factorization's first reuse: a cold solve's next exact step), a new factorization instead. GMRES preconditioned by that corrected
 // inverse absorbs the small drift of the other rows and the inverse's own round-off. A new
 // factorization only when GMRES stalls or most rows changed. Needs a dense W0.
 // When W0 is kept compressed (solver.compressed_min_nodes pairs on; la/hodlr.hpp: the off-diagonal
