@@ -12,9 +12,10 @@
 // low-rank (Sherman-Morrison-Woodbury) correction of that inverse, kept pending while their
 // count is small (c^2 m per solve) and folded into the inverse beyond (2 c m^2 once, instead
 // of the 2 m^3 of a new factorization and inverse); where the inverse is not formed yet (a
-// factorization's first reuse: a cold solve's next exact step), a new factorization instead. GMRES preconditioned by that corrected
-// inverse absorbs the small drift of the other rows and the inverse's own round-off. A new
-// factorization only when GMRES stalls or most rows changed. Needs a dense W0.
+// factorization's first reuse: a cold solve's next exact step), a new factorization instead.
+// GMRES preconditioned by that corrected inverse absorbs the small drift of the other rows
+// and the inverse's own round-off. A new factorization only when GMRES stalls or most rows
+// changed. Needs a dense W0.
 // When W0 is kept compressed (solver.compressed_min_nodes pairs on; la/hodlr.hpp: the off-diagonal
 // blocks of an interface line's flexibility have low rank r), A0 = C_y + C_w W0 is mixed
 // from it row by row and factorized compressed, at about m r^2 log^2 m instead of m^3, without
