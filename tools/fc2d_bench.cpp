@@ -227,7 +227,8 @@ PlainContactProblem copies(const PlainContactProblem& p, int K) {
 const char* const usage =
     "usage: fc2d-bench [--benchmarks CONFIG_DIR] [--copies K] [FILE.dat...]\n"
     "Our contact solvers (bipotential Gauss-Seidel and Jacobi, rccm, newton) against Siconos' NSGS, one row\n"
-    "per problem and solver: iterations, Siconos' error, ms per solve, Siconos' time over ours.\n"
+    "per problem and solver: iterations, Siconos' error, ms per solve, Siconos' time over ours; in 2D also\n"
+    "\"GS at Siconos' its\": our plain sweeps, exactly as many as Siconos' iterations (the same iterates).\n"
     "  FILE.dat            a Siconos fc2d problem (Siconos' numerics/src/FrictionContact/test/data/)\n"
     "  --benchmarks DIR    B1's and B2's condensed problems at every 40th step of Euler-210, and in 3D the\n"
     "                      corner peel's against fc3d NSGS (DIR/b1.cfg, b2.cfg, corner-peel.cfg)\n"
