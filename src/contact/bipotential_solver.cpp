@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -237,6 +238,10 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
                                             const Eigen::VectorXd& u_start) {
   ContactSolution s;
   Buffers<dim>& kept = buffers<dim>();
+  // A compressed W0's products in as many threads as the sweeps' timings chose
+  // (la/thread_choice.hpp), for the whole solve.
+  const bool timed = pb.W0->compressed() != nullptr;
+  const blas_threads::Limit threads(timed ? threads_.chosen() : 0);
   Iteration<dim> it(pb, params_, Rbar_start, u_start, s, kept);
   // The exact step's dense matrices are bounded by active_set_max_nodes; compressed, by nothing.
   const bool exact = params_.active_set && (pb.W0->compressed() || (pb.size() <= params_.active_set_max_nodes && pb.W0->dense()));
@@ -281,8 +286,18 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
   };
   AndersonMixing& anderson = kept.anderson;
   anderson.restart(gauss_seidel ? params_.anderson : 0);
-  for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
+  // A compressed W0's sweeps timed, and made with the count their timings chose (or probe).
+  const auto sweep = [&] {
+    if (!timed) return it.sweep();
+    const int threads = threads_.threads();
+    blas_threads::limit_products(threads);
+    const auto start = std::chrono::steady_clock::now();
     it.sweep();
+    threads_.record(threads, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    blas_threads::limit_products(threads_.chosen());
+  };
+  for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {
+    sweep();
     if (it.converged_after_sweep()) break;
     if (!exact_step_due()) {
       if (s.iterations <= tuning::anderson_sweeps) it.accelerate(anderson);

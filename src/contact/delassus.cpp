@@ -58,7 +58,7 @@ std::string CompressedDelassus::storage() const {
   const double m = double(size()), stored = double(W_.stored());
   return "compressed (HODLR), " + shape_and_memory(size(), stored) + ", " + fmt("%.0f", 100.0 * stored / (m * m)) +
          " % of dense), largest rank " + std::to_string(W_.max_rank()) + ", its large blocks in " +
-         std::to_string(blas_threads::products()) + " thread(s)";
+         std::to_string(blas_threads::most_products()) + " thread(s)";
 }
 
 void CompressedDelassus::multiply(const Eigen::Ref<const Eigen::VectorXd>& y, Eigen::Ref<Eigen::VectorXd> u) const {

@@ -29,6 +29,12 @@ OpenBlas& openblas() {
 }
 
 std::atomic<bool> only_one{false};  // keep_one() was called
+std::atomic<int> limit{0};          // limit_products()'s (0: none)
+
+int cores() {
+  static const int count = omp_get_num_procs();
+  return count;
+}
 
 }  // namespace
 
@@ -50,10 +56,16 @@ void keep_one() {
 // More threads than cores spin against each other (OMP_NUM_THREADS=64 on 2 cores: the 625-node
 // peel's contact solves 12 times as slow): at most the cores, counted once (omp_get_num_procs
 // asks the kernel for the affinity at each call, and a sweep asks for each of W0's blocks).
+int most_products() { return only_one ? 1 : std::max(1, std::min(omp_get_max_threads(), cores())); }
+
 int products() {
-  static const int cores = omp_get_num_procs();
-  return only_one ? 1 : std::max(1, std::min(omp_get_max_threads(), cores));
+  const int cap = limit;
+  return cap > 0 ? std::min(most_products(), cap) : most_products();
 }
+
+int slices() { return cores(); }
+
+void limit_products(int threads) { limit = threads; }
 
 Wide::Wide() {
   OpenBlas& b = openblas();

@@ -170,27 +170,33 @@ std::pair<Eigen::Index, Eigen::Index> share(Eigen::Index n, int t, int threads) 
 }
 
 /// y += U (V^T x), a block's product with a vector (a sweep streams the blocks from memory, so
-/// a large one is read by blas_threads::products() threads: V^T x by columns, then U z by rows),
-/// or with a block of columns (BLAS-3 speed already).
+/// a large one is cut into blas_threads::slices() slices, V^T x by columns, then U z by rows,
+/// which blas_threads::products() threads share: the same sums whatever the threads), or with
+/// a block of columns (BLAS-3 speed already).
 template <class Columns>
 void add_block_product(const Eigen::MatrixXd& U, const Eigen::MatrixXd& V, const Eigen::Ref<const Columns>& x,
                        Eigen::Ref<Columns> y) {
-  const int threads = Columns::ColsAtCompileTime == 1
-                          ? int(std::min<Eigen::Index>(blas_threads::products(), U.size() / entries_per_thread))
-                          : 1;
-  if (threads <= 1) {
+  const int slices = Columns::ColsAtCompileTime == 1
+                         ? int(std::min<Eigen::Index>(blas_threads::slices(), U.size() / entries_per_thread))
+                         : 1;
+  if (slices <= 1) {
     y.noalias() += U * (V.transpose() * x);
     return;
   }
+  const int threads = std::min(blas_threads::products(), slices);
   Columns z(V.cols(), 1);
-#pragma omp parallel num_threads(threads)
+#pragma omp parallel num_threads(threads) if (threads > 1)
   {
     const int t = omp_get_thread_num(), n = omp_get_num_threads();
-    const auto [c, nc] = share(V.cols(), t, n);
-    z.middleRows(c, nc).noalias() = V.middleCols(c, nc).transpose() * x;
+    for (int k = t; k < slices; k += n) {
+      const auto [c, nc] = share(V.cols(), k, slices);
+      z.middleRows(c, nc).noalias() = V.middleCols(c, nc).transpose() * x;
+    }
 #pragma omp barrier
-    const auto [r, nr] = share(U.rows(), t, n);
-    y.middleRows(r, nr).noalias() += U.middleRows(r, nr) * z;
+    for (int k = t; k < slices; k += n) {
+      const auto [r, nr] = share(U.rows(), k, slices);
+      y.middleRows(r, nr).noalias() += U.middleRows(r, nr) * z;
+    }
   }
 }
 

@@ -244,11 +244,13 @@ TEST_CASE("HODLR: peeling a surface's kernel takes wide blocks of products where
   CHECK((P.multiply(v) - A * v).norm() <= 100 * relative * scale * v.norm());
 }
 
-TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared among threads are the dense ones", "[hodlr]") {
+TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared among threads are the dense ones, to the bit in any thread count", "[hodlr]") {
   // A surface's kernel (surface_kernel): the blocks of the top bisections are large enough to
   // be shared among three threads (la/hodlr.cpp: 2^14 entries each at least; two on a 2-core
   // machine, as no more threads than cores share them). The pass and the product must be the
-  // dense ones, and the same as in one thread to round-off.
+  // dense ones, and bit for bit those of one thread: the blocks are cut into the cores' slices
+  // whatever the threads (blas_threads::slices()), so that the sweeps' choice of threads
+  // (la/thread_choice.hpp) and OMP_NUM_THREADS move no result.
   const int m = 32 * 32;
   const Eigen::MatrixXd A = surface_kernel(32);
   const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
@@ -285,10 +287,20 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
   for (const Eigen::VectorXd* x : {&x1, &x3}) CHECK((*x - x_dense).norm() <= 1e-11 * x_dense.norm());
   for (const Eigen::VectorXd* y : {&y1, &y3}) CHECK((*y - y_dense).norm() <= 1e-11 * y_dense.norm());
   CHECK((y3 - A * x3 - q).norm() <= 1e-11 * scale * x3.norm());
-  CHECK((x3 - x1).norm() <= 1e-14 * x1.norm());
-  CHECK((y3 - y1).norm() <= 1e-14 * y1.norm());
+  CHECK(x3 == x1);
+  CHECK(y3 == y1);
   for (const Eigen::VectorXd* p : {&product1, &product3}) CHECK((*p - A * x0).norm() <= 1e-11 * scale * x0.norm());
-  CHECK((product3 - product1).norm() <= 1e-14 * product1.norm());
+  CHECK(product3 == product1);
+  // The sweeps' limit (limit_products) is one more thread count: the same bits again.
+  blas_threads::limit_products(1);
+  CHECK(blas_threads::products() == 1);
+  Eigen::VectorXd x_limited, y_limited;
+  pass(x_limited, y_limited);
+  const Eigen::VectorXd product_limited = P.multiply(x0);
+  blas_threads::limit_products(0);
+  CHECK(blas_threads::products() == blas_threads::most_products());
+  CHECK(x_limited == x1);
+  CHECK(product_limited == product1);
 }
 
 TEST_CASE("HODLR: a Gauss-Seidel pass by blocks sweeps each largest subtree within the rows several times before the next",

@@ -14,6 +14,8 @@
 #include "rccm/contact/anderson.hpp"
 #include "rccm/contact/contact_solver.hpp"
 #include "rccm/contact/pair_block.hpp"
+#include "rccm/la/blas_threads.hpp"
+#include "rccm/la/thread_choice.hpp"
 
 namespace rccm {
 
@@ -56,6 +58,8 @@ class BipotentialSolver final : public ContactSolver {
   Buffers<3> buffers_3d_;
   template <int dim>
   Buffers<dim>& buffers();
+  // How many threads share the compressed W0's sweeps, by their speed (la/thread_choice.hpp).
+  ThreadChoice threads_{blas_threads::most_products()};
 };
 
 }  // namespace rccm

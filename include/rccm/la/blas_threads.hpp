@@ -26,10 +26,30 @@ int wide();
 /// for each other, or several processes (mpirun).
 void keep_one();
 
-/// The threads that share rccm's own large matrix-vector products (the compressed W0's blocks
-/// in a Gauss-Seidel sweep, la/hodlr.cpp; through OpenMP): OpenMP's count (OMP_NUM_THREADS or
-/// the cores) but no more than the cores, or 1 after keep_one().
+/// The threads that may share rccm's own large matrix-vector products (the compressed W0's
+/// blocks in a Gauss-Seidel sweep, la/hodlr.cpp; through OpenMP): OpenMP's count
+/// (OMP_NUM_THREADS or the cores) but no more than the cores, or 1 after keep_one().
+int most_products();
+
+/// The threads that share them now: most_products(), at most limit_products()'s.
 int products();
+
+/// The slices rccm's own large products are cut into (the compressed W0's blocks, la/hodlr.cpp):
+/// the machine's cores, however many threads compute them, so that the sums and their
+/// round-off do not depend on the threads (OMP_NUM_THREADS, keep_one, the sweeps' choice).
+int slices();
+
+/// products() at most `threads` from now on (0: no limit): the sweeps' choice (thread_choice.hpp).
+void limit_products(int threads);
+
+/// Within its lifetime products() is at most `threads` (0: no limit); no limit after.
+class Limit {
+ public:
+  explicit Limit(int threads) { limit_products(threads); }
+  ~Limit() { limit_products(0); }
+  Limit(const Limit&) = delete;
+  Limit& operator=(const Limit&) = delete;
+};
 
 /// Within its lifetime the BLAS has wide() threads; one before and after.
 class Wide {
