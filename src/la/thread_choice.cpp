@@ -8,8 +8,6 @@ ThreadChoice::ThreadChoice(int most, int interval, int probe)
     : most_(std::max(1, most)), interval_(interval), probe_(probe), chosen_(most_), due_(probe) {}
 
 void ThreadChoice::record(int threads, double seconds) {
-  ++sweeps_;
-  if (threads == 1) ++single_;
   if (most_ == 1) return;
   if (probing_ > 0 && threads == other()) {
     probe_seconds_ += seconds;
@@ -29,7 +27,7 @@ void ThreadChoice::record(int threads, double seconds) {
   }
   if (threads != chosen_) return;  // a sweep made before the choice moved
   chosen_seconds_ += seconds;
-  // The first probe after `probe` sweeps, then every `interval`.
+  // The first probe after `probe` sweeps, then after due_ (`interval`, doubled while confirmed).
   if (++chosen_count_ >= due_) probing_ = probe_;
 }
 

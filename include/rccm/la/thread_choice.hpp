@@ -2,7 +2,7 @@
 // sweeps' measured speed. Threads split a sweep's large block products (la/hodlr.cpp) and wait
 // for each other at each block: where other work shares the cores and the scheduler parks one
 // thread, a block now and then waits a time slice for it (the 625-node corner peel beside one
-// busy process: 7.7 ms per contact solve in two threads, 2.75 ms in one; alone 2.2-2.9 ms in
+// busy process: 9.3 ms per contact solve in two threads, 2.92 ms in one; alone 2.4-2.9 ms in
 // either; the 2116-node peel alone is 1.5 times as fast in two). So the sweeps are timed: after
 // the first `probe` sweeps, then after `interval` sweeps at the chosen count, `probe` sweeps
 // at the other one; the count with the smaller mean time per sweep is chosen from then on
@@ -27,10 +27,6 @@ class ThreadChoice {
   /// The sweep made with `threads` threads took `seconds`.
   void record(int threads, double seconds);
 
-  /// Sweeps made with one thread, and in all (for the run's report).
-  long single() const { return single_; }
-  long sweeps() const { return sweeps_; }
-
  private:
   int other() const { return chosen_ == 1 ? most_ : 1; }
 
@@ -43,7 +39,6 @@ class ThreadChoice {
   // Since the last probe: the chosen count's sweeps and their time; the probe's time.
   int chosen_count_ = 0;
   double chosen_seconds_ = 0, probe_seconds_ = 0;
-  long single_ = 0, sweeps_ = 0;
 };
 
 }  // namespace rccm
