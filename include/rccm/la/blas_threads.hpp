@@ -35,8 +35,10 @@ int most_products();
 int products();
 
 /// The slices rccm's own large products are cut into (the compressed W0's blocks, la/hodlr.cpp):
-/// the machine's cores, however many threads compute them, so that the sums and their
-/// round-off do not depend on the threads (OMP_NUM_THREADS, keep_one, the sweeps' choice).
+/// the machine's cores, however many threads compute them. Where a slice begins decides which
+/// of its rows Eigen sums by packets (fused multiply-adds) and which one by one (a multiply and
+/// an add, two roundings): slices fixed by the cores keep the bits the same in any thread count
+/// (OMP_NUM_THREADS, keep_one, the sweeps' choice); cut by the threads, they were not.
 int slices();
 
 /// products() at most `threads` from now on (0: no limit): the sweeps' choice (thread_choice.hpp).

@@ -8,7 +8,7 @@
 // at the other one; the count with the smaller mean time per sweep is chosen from then on
 // (means, not medians: the occasional stalled block is the whole cost). A probe that confirms
 // the choice doubles the sweeps to the next (up to max_interval_factor times `interval`); a
-// change brings them back to `interval`. The products' sums do not depend on the count
+// change brings them back to `interval`. The products' slices do not depend on the count
 // (blas_threads::slices()): the choice moves no bit of a result.
 #pragma once
 
