@@ -241,7 +241,7 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
   // A compressed W0's products in as many threads as the sweeps' timings chose
   // (la/thread_choice.hpp), for the whole solve.
   const bool timed = pb.W0->compressed() != nullptr;
-  const blas_threads::Limit threads(timed ? threads_.chosen() : 0);
+  const blas_threads::Limit limit(timed ? threads_.chosen() : 0);
   Iteration<dim> it(pb, params_, Rbar_start, u_start, s, kept);
   // The exact step's dense matrices are bounded by active_set_max_nodes; compressed, by nothing.
   const bool exact = params_.active_set && (pb.W0->compressed() || (pb.size() <= params_.active_set_max_nodes && pb.W0->dense()));

@@ -250,8 +250,9 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
   // machine, as no more threads than cores share them). The pass and the product must be the
   // dense ones, and bit for bit those of one thread: the blocks are cut into the cores' slices
   // whatever the threads (blas_threads::slices()), so that the sweeps' choice of threads
-  // (la/thread_choice.hpp) and OMP_NUM_THREADS move no result. 31 x 31 points: the slices
-  // begin at odd rows, where Eigen sums some rows one by one (a split by the threads moved bits).
+  // (la/thread_choice.hpp) and OMP_NUM_THREADS move no result. 30 x 30 points: slices begin at
+  // rows off Eigen's packets, where it sums some rows one by one (a split by the threads moved
+  // bits there; on 32 x 32 every slice began on a packet and it passed).
   const int m = 30 * 30;
   const Eigen::MatrixXd A = surface_kernel(30);
   const HodlrMatrix P = HodlrMatrix::symmetric(m, [&](const Eigen::MatrixXd& X) { return Eigen::MatrixXd(A * X); }, 1e-13, 32, 1);
@@ -292,13 +293,14 @@ TEST_CASE("HODLR: a Gauss-Seidel pass and the products with the blocks shared am
   CHECK(y3 == y1);
   for (const Eigen::VectorXd* p : {&product1, &product3}) CHECK((*p - A * x0).norm() <= 1e-11 * scale * x0.norm());
   CHECK(product3 == product1);
-  // The sweeps' limit (limit_products) is one more thread count: the same bits again.
-  blas_threads::limit_products(1);
-  CHECK(blas_threads::products() == 1);
-  Eigen::VectorXd x_limited, y_limited;
-  pass(x_limited, y_limited);
-  const Eigen::VectorXd product_limited = P.multiply(x0);
-  blas_threads::limit_products(0);
+  // The sweeps' limit (blas_threads::Limit) is one more thread count: the same bits again.
+  Eigen::VectorXd x_limited, y_limited, product_limited;
+  {
+    const blas_threads::Limit one(1);
+    CHECK(blas_threads::products() == 1);
+    pass(x_limited, y_limited);
+    product_limited = P.multiply(x0);
+  }
   CHECK(blas_threads::products() == blas_threads::most_products());
   CHECK(x_limited == x1);
   CHECK(product_limited == product1);

@@ -5,6 +5,7 @@
 
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <functional>
 #include <vector>
 
@@ -23,11 +24,8 @@ std::vector<int> sweeps(ThreadChoice& choice, int n, int first, const std::funct
   return used;
 }
 
-int count(const std::vector<int>& used, int threads) {
-  int c = 0;
-  for (int t : used) c += t == threads;
-  return c;
-}
+/// How many of the sweeps were made with `threads` threads.
+long count(const std::vector<int>& used, int threads) { return std::count(used.begin(), used.end(), threads); }
 
 }  // namespace
 
