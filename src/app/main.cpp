@@ -27,6 +27,10 @@
 
 namespace {
 
+/// A line to stderr in one write: under mpirun another process's abort notice otherwise landed
+/// inside it (seen: between "rccm: run failed: " and ARKODE's message, which a test looks for).
+void say(const std::string& line) { std::cerr << line + "\n"; }
+
 void print_totals(const rccm::RunResult& r) {
   const double per_solve = (r.wall_seconds - r.setup_seconds) / std::max(1L, r.solves.contact_solves);
   std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d)\n"
@@ -281,16 +285,16 @@ int main(int argc, char** argv) {
     }
     return 0;
   } catch (const rccm::InputError& e) {
-    if (root) std::cerr << "rccm: error: " << e.what() << "\n";  // the same in every process
+    if (root) say(std::string("rccm: error: ") + e.what());  // the same in every process
     return 2;
   } catch (const rccm::SolveError& e) {
-    if (root) std::cerr << "rccm: run failed: " << e.what() << "\n";
+    if (root) say(std::string("rccm: run failed: ") + e.what());
     return 3;
   } catch (const rccm::Interrupted& e) {
-    if (root) std::cerr << "rccm: " << e.what() << "; the results up to that step are complete in the output directory\n";
+    if (root) say(std::string("rccm: ") + e.what() + "; the results up to that step are complete in the output directory");
     return 128 + e.signal;
   } catch (const std::exception& e) {
-    std::cerr << "rccm: internal error: " << e.what() << "\n";
+    say(std::string("rccm: internal error: ") + e.what());
     return 1;
   }
   }();
