@@ -5,6 +5,9 @@
 
 #include <algorithm>
 #include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <string>
 
 namespace rccm::blas_threads {
 
@@ -67,9 +70,30 @@ int slices() { return cores(); }
 
 void limit_products(int threads) { limit = threads; }
 
+int wide_threads(int wide, int cores, int others) {
+  return others > 0 ? std::max(1, std::min(wide, cores - others)) : wide;
+}
+
+int others_running() {
+  std::ifstream loadavg("/proc/loadavg");  // "0.61 1.34 1.61 3/78 32075": the 4th field's first number
+  double minute, five, fifteen;
+  int running = 0;
+  if (!(loadavg >> minute >> five >> fifteen >> running)) return 0;
+  int own = 0;  // this process's threads in state R ("tid (comm) R ..."; comm may hold spaces and parentheses)
+  std::error_code error;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", error)) {
+    std::ifstream stat(task.path() / "stat");
+    std::string line;
+    std::getline(stat, line);
+    const std::size_t close = line.rfind(')');
+    if (close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'R') ++own;
+  }
+  return std::max(0, running - own);
+}
+
 Wide::Wide() {
   OpenBlas& b = openblas();
-  if (b.set && b.wide > 1) b.set(b.wide);
+  if (b.set && b.wide > 1) b.set(wide_threads(b.wide, cores(), others_running()));
 }
 
 Wide::~Wide() {

@@ -7,7 +7,16 @@
 #include <catch2/catch.hpp>
 #include <omp.h>
 
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <thread>
 #include <vector>
 
 using namespace rccm;
@@ -69,4 +78,71 @@ TEST_CASE("The BLAS has one thread outside the wide scopes and its start-up coun
   }
   CHECK(blas_threads::wide() == 1);
   CHECK(blas_threads::products() == 1);  // the compressed W0's products too (la/hodlr.cpp)
+}
+
+TEST_CASE("A wide scope leaves other programs' cores to them", "[blas-threads]") {
+  // The BLAS's count alone; no more than the cores others leave, at least one.
+  CHECK(blas_threads::wide_threads(2, 2, 0) == 2);
+  CHECK(blas_threads::wide_threads(2, 2, 1) == 1);
+  CHECK(blas_threads::wide_threads(2, 2, 5) == 1);
+  CHECK(blas_threads::wide_threads(8, 16, 3) == 8);
+  CHECK(blas_threads::wide_threads(8, 16, 12) == 4);
+  CHECK(blas_threads::wide_threads(4, 2, 0) == 4);  // OPENBLAS_NUM_THREADS above the cores, asked for on a free machine
+}
+
+namespace {
+
+/// The state letter of process `pid`'s /proc stat line ('R': runnable).
+char process_state(pid_t pid) {
+  std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
+  std::string line;
+  std::getline(stat, line);
+  const std::size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() ? line[close + 2] : '?';
+}
+
+}  // namespace
+
+TEST_CASE("Another program's runnable thread counts and this process's own do not", "[blas-threads]") {
+  if (!std::ifstream("/proc/loadavg")) {
+    WARN("no /proc/loadavg: nothing to count");
+    return;
+  }
+  // Three threads of ours spinning: were they counted, 4 runnable threads (with this one)
+  // would read as others on any machine of fewer cores; a machine's other programs rarely
+  // keep 3 runnable at once, so at least one of ten looks sees fewer.
+  std::atomic<bool> stop{false};
+  std::vector<std::thread> spinners;
+  for (int k = 0; k < 3; ++k)
+    spinners.emplace_back([&stop] {
+      while (!stop) {
+      }
+    });
+  int fewest = 1 << 30;
+  for (int look = 0; look < 10; ++look) {
+    fewest = std::min(fewest, blas_threads::others_running());
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  stop = true;
+  for (std::thread& t : spinners) t.join();
+  CHECK(fewest < 3);
+  // A child process spinning is another program: counted at every look once it runs.
+  const pid_t child = fork();
+  REQUIRE(child >= 0);
+  if (child == 0)
+    for (;;) {
+    }
+  for (int wait = 0; wait < 200 && process_state(child) != 'R'; ++wait)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  int least = 1 << 30;
+  for (int look = 0; look < 5; ++look) least = std::min(least, blas_threads::others_running());
+  int wide_beside = 0;  // a wide scope's threads beside it: at most the cores it leaves
+  if (blas_threads::current() > 0) {
+    const blas_threads::Wide scope;
+    wide_beside = blas_threads::current();
+  }
+  kill(child, SIGKILL);
+  waitpid(child, nullptr, 0);
+  CHECK(least >= 1);
+  CHECK(wide_beside <= std::max(1, std::min(blas_threads::wide(), omp_get_num_procs() - 1)));
 }
