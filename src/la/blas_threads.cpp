@@ -91,9 +91,9 @@ int others_running() {
   return std::max(0, running - own);
 }
 
-Wide::Wide() {
+Wide::Wide(int others) {
   OpenBlas& b = openblas();
-  if (b.set && b.wide > 1) b.set(wide_threads(b.wide, cores(), others_running()));
+  if (b.set && b.wide > 1) b.set(wide_threads(b.wide, cores(), others));
 }
 
 Wide::~Wide() {

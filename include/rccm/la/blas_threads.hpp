@@ -64,11 +64,11 @@ int wide_threads(int wide, int cores, int others);
 /// process's running ones); 0 where /proc cannot say.
 int others_running();
 
-/// Within its lifetime the BLAS has wide_threads(wide(), cores, others_running()) threads; one
-/// before and after.
+/// Within its lifetime the BLAS has wide_threads(wide(), cores, others) threads, `others` the
+/// runnable threads of other programs as the scope opens; one before and after.
 class Wide {
  public:
-  Wide();
+  explicit Wide(int others = others_running());
   ~Wide();
   Wide(const Wide&) = delete;
   Wide& operator=(const Wide&) = delete;
