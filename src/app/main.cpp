@@ -10,6 +10,7 @@
 #include "rccm/base/suggest.hpp"
 #include "rccm/io/config_reader.hpp"
 #include "rccm/io/output_directory.hpp"
+#include "rccm/io/run_report.hpp"
 #include "rccm/la/blas_threads.hpp"
 #include "rccm/la/parallel.hpp"
 
@@ -37,6 +38,8 @@ void print_totals(const rccm::RunResult& r) {
               "# wall %.3f s: setup %.4f s, %.1f us per contact solve\n",
               r.integrator.steps, r.integrator.rejected, r.solves.contact_solves, r.solves.sweeps_per_solve(),
               r.solves.max_sweeps, r.wall_seconds, r.setup_seconds, 1e6 * per_solve);
+  const std::string threaded = rccm::threaded_sweeps_line(r.solves, rccm::blas_threads::most_products());
+  if (!threaded.empty()) std::printf("# %s\n", threaded.c_str());
   if (r.solves.condensations > 0)
     std::printf("# W0's springs followed beta %ld times (%.3f s of the wall time)\n", r.solves.condensations,
                 r.solves.condense_seconds);

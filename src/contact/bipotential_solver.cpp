@@ -294,6 +294,8 @@ ContactSolution BipotentialSolver::solve_in(const ContactProblem& pb, const Eige
     const auto start = std::chrono::steady_clock::now();
     it.sweep();
     threads_.record(threads, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    ++s.timed_sweeps;
+    if (threads > 1) ++s.threaded_sweeps;
     blas_threads::limit_products(threads_.chosen());
   };
   for (++s.iterations; s.iterations <= params_.max_iterations; ++s.iterations) {

@@ -20,6 +20,8 @@ void SolveCounts::add(const ContactSolution& s, double solve_seconds) {
   seconds += solve_seconds;
   sweeps += s.iterations;
   max_sweeps = std::max(max_sweeps, s.iterations);
+  timed_sweeps += s.timed_sweeps;
+  threaded_sweeps += s.threaded_sweeps;
 }
 
 BetaOde::BetaOde(Model& model, std::unique_ptr<ContactSolver> solver, Observer observer)

@@ -4,6 +4,7 @@
 
 #include "random_problem.hpp"
 #include "rccm/contact/solver_tuning.hpp"
+#include "rccm/la/blas_threads.hpp"
 #include "rccm/la/hodlr.hpp"
 
 #include <Eigen/Dense>
@@ -439,4 +440,30 @@ TEST_CASE("the sweeps' tolerance is relative to the largest force, the adhesive 
   CHECK(std::abs(s.Rbar[5] - 5e-7) <= 1e-10);
   CHECK(s.iterations >= 17);
   CHECK(s.iterations <= 20);
+}
+
+TEST_CASE("A compressed W0's sweeps are counted and so are those several threads shared", "[solver]") {
+  // Every sweep of a compressed W0 is timed (la/thread_choice.hpp): a cold solve's iterations
+  // are all sweeps; the first ten of a new solver take the threads there are, the next ten
+  // (the first probe) one; a dense W0's sweeps are not timed.
+  std::mt19937 gen(5);
+  RandomProblem rp(40, 3, Family::Hard, false, gen);
+  const CompressedDelassus compressed{HodlrMatrix(rp.matrix(), 1e-14 * rp.matrix().diagonal().maxCoeff(), 12, 3)};
+  ContactProblem pb = rp.pb;
+  pb.W0 = &compressed;
+  const ContactSolution s = BipotentialSolver(plain_sweeps()).solve(pb, {}, {});
+  REQUIRE(s.converged);
+  INFO(s.iterations << " sweeps, " << s.threaded_sweeps << " in " << blas_threads::most_products() << " threads");
+  CHECK(s.timed_sweeps == s.iterations);
+  REQUIRE(s.iterations > 10);  // the hard family: the probe comes
+  if (blas_threads::most_products() > 1) {
+    CHECK(s.threaded_sweeps >= 10);
+    CHECK(s.threaded_sweeps <= s.iterations - std::min(s.iterations - 10, 10));
+  } else {
+    CHECK(s.threaded_sweeps == 0);
+  }
+  CHECK(s.threaded_sweeps <= s.timed_sweeps);
+  const ContactSolution d = BipotentialSolver(plain_sweeps()).solve(rp.pb, {}, {});
+  CHECK(d.timed_sweeps == 0);
+  CHECK(d.threaded_sweeps == 0);
 }

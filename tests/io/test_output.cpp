@@ -5,6 +5,7 @@
 #include "rccm/app/simulation.hpp"
 #include "rccm/app/stop_request.hpp"
 #include "rccm/base/errors.hpp"
+#include "rccm/io/run_report.hpp"
 
 #include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
@@ -229,4 +230,19 @@ time = { T = 1.0; };
   const double b210 = left(test::shipped("b1.cfg"), 210), b420 = left(test::shipped("b1.cfg"), 420);
   CHECK(b210 > 0.5);
   CHECK(b420 > 0.5);
+}
+
+TEST_CASE("The closing lines say how many of the compressed W0's sweeps several threads shared", "[output]") {
+  SolveCounts counts;
+  ContactSolution s;
+  s.iterations = 7;
+  s.timed_sweeps = 6;
+  s.threaded_sweeps = 4;
+  counts.add(s, 0.0);
+  counts.add(s, 0.0);
+  CHECK(counts.timed_sweeps == 12);
+  CHECK(counts.threaded_sweeps == 8);
+  CHECK(threaded_sweeps_line(counts, 2).rfind("sweeps in 2 threads: 8 of the compressed W0's 12 ", 0) == 0);
+  CHECK(threaded_sweeps_line(counts, 1).empty());    // one thread to take: nothing to say
+  CHECK(threaded_sweeps_line(SolveCounts{}, 2).empty());  // a dense W0: no sweep timed
 }

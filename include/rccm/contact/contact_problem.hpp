@@ -43,6 +43,8 @@ struct ContactSolution {
   int iterations = 0;    // the solver's contact iterations: sweeps over all pairs (bipotential,
                          // rccm), Newton steps and fallback sweeps (newton)
   int exact_solves = 0;  // linear solves: exact active-set steps (bipotential), Newton directions
+  int timed_sweeps = 0;     // bipotential sweeps of a compressed W0 (timed: la/thread_choice.hpp) ...
+  int threaded_sweeps = 0;  // ... and of them those whose products several threads shared
   double residual = 0;   // largest scaled natural-map residual
   int worst_node = -1;   // pair of that residual
   bool converged = false;

@@ -28,6 +28,9 @@ struct SolveCounts {
   double seconds = 0;  // wall time inside the contact solves (problem set-up and solver)
   long condensations = 0;       // W0's springs set anew (Model::condense; solver.springs_follow_beta)
   double condense_seconds = 0;  // wall time of those
+  // ContactSolution's timed and threaded sweeps, of this process (not in a checkpoint: since
+  // a restart, as its wall time).
+  long timed_sweeps = 0, threaded_sweeps = 0;
   void add(const ContactSolution& s, double solve_seconds);
   double sweeps_per_solve() const { return double(sweeps) / double(std::max(1L, contact_solves)); }
 };
