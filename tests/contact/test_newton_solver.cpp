@@ -205,12 +205,13 @@ TEST_CASE("a single free node is solved exactly in each regime, 2D and 3D", "[ne
 TEST_CASE("3D Newton steps preconditioned by another problem's Jacobian stay Newton's: quadratic, no fallback",
           "[newton-solver]") {
   // The 3D direction is solved by GMRES preconditioned with the LU of the last Jacobian
-  // factorized, here that of an unrelated problem of the same size (GMRES must not stop short
-  // of the direction's accuracy) or of another size (factorized afresh).
+  // factorized, here that of an unrelated problem of the same size (90 rows: GMRES's 20
+  // iterations do not reach the direction's accuracy, and J is factorized afresh) or of
+  // another size (factorized afresh).
   std::mt19937 gen(31);
   for (int trial = 0; trial < 6; ++trial) {
-    const RandomProblem other(12, 3, Family::Hard, trial % 2 == 0, gen), resized(7, 3, Family::Mild, true, gen);
-    const RandomProblem rp(12, 3, Family::Hard, trial % 2 == 1, gen);
+    const RandomProblem other(30, 3, Family::Hard, trial % 2 == 0, gen), resized(7, 3, Family::Mild, true, gen);
+    const RandomProblem rp(30, 3, Family::Hard, trial % 2 == 1, gen);
     for (const RandomProblem* before : {&other, &resized}) {
       const std::vector<double> r = residual_history(rp.pb, &before->pb);
       INFO("trial " << trial << (before == &other ? ", after another problem" : ", after a smaller problem")
@@ -220,6 +221,27 @@ TEST_CASE("3D Newton steps preconditioned by another problem's Jacobian stay New
       CHECK(r.back() <= 1e-13);
       CHECK(r.size() <= 16);
     }
+  }
+}
+
+TEST_CASE("3D cold start on a pressed sticking interface: one Newton step lands on the solution", "[newton-solver]") {
+  // From y = 0 every pair is pressed and sticks (mubar 10, small shear), so F is affine on the
+  // piece of the start and of the solution: Newton's first step is exact.
+  std::mt19937 gen(37);
+  for (int trial = 0; trial < 4; ++trial) {
+    RandomProblem rp(10 + 5 * trial, 3, Family::Mild, trial % 2 == 1, gen);
+    for (int i = 0; i < rp.pb.size(); ++i) {
+      rp.pb.q0.segment<2>(3 * i) *= 0.1;
+      rp.pb.q0[3 * i + 2] = -2.0;
+    }
+    rp.pb.mubar.setConstant(10.0);
+    const ContactSolution s = NewtonSolver(params()).solve(rp.pb, {}, {});
+    INFO("trial " << trial << ": " << s.iterations << " iterations, residual " << s.residual);
+    REQUIRE(s.converged);
+    require_solution(rp.pb, s);
+    CHECK(std::count(s.status.begin(), s.status.end(), Status::Stick) == rp.pb.size());
+    CHECK(s.iterations == 1);
+    CHECK(s.exact_solves == 1);
   }
 }
 
