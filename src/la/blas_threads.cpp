@@ -91,6 +91,8 @@ int others_running() {
   return std::max(0, running - own);
 }
 
+Wide::Wide() : Wide(openblas().set && openblas().wide > 1 ? others_running() : 0) {}
+
 Wide::Wide(int others) {
   OpenBlas& b = openblas();
   if (b.set && b.wide > 1) b.set(wide_threads(b.wide, cores(), others));

@@ -21,6 +21,7 @@ void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r)
 /// the compressed W0's 5004 ..."; la/thread_choice.hpp), for report.txt and the closing lines;
 /// empty where none was timed or they had one thread to take.
 std::string threaded_sweeps_line(const SolveCounts& solves, int most_threads);
+
 void write_report_json(std::ostream& out, const Config& cfg, const RunResult& r);
 
 /// A complete run as its report.json tells it (a resumed sweep's kept case).

@@ -65,10 +65,12 @@ int wide_threads(int wide, int cores, int others);
 int others_running();
 
 /// Within its lifetime the BLAS has wide_threads(wide(), cores, others) threads, `others` the
-/// runnable threads of other programs as the scope opens; one before and after.
+/// runnable threads of other programs as the scope opens (others_running(), read only where
+/// wide() > 1); one before and after.
 class Wide {
  public:
-  explicit Wide(int others = others_running());
+  Wide();
+  explicit Wide(int others);
   ~Wide();
   Wide(const Wide&) = delete;
   Wide& operator=(const Wide&) = delete;
