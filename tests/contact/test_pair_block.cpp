@@ -8,6 +8,7 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 
+#include <cmath>
 #include <random>
 
 using namespace rccm;
@@ -100,5 +101,38 @@ TEST_CASE("a pair whose spring cancels its flexibility (det(I - W_ii E) = 0) is 
   } catch (const SolveError& e) {
     CHECK(e.node == 1);
     CHECK_THAT(e.what(), Catch::Contains("contact node 1 has no stiffness left"));
+  }
+}
+
+TEST_CASE("The largest eigenvalue of a pair's 2 x 2 and 3 x 3 flexibility in closed form is the iterative one's",
+          "[pair-block]") {
+  // rho = 1 / lambda_max (docs/MODEL.md s5) from the closed forms (2 x 2: the root; 3 x 3: the
+  // characteristic cubic's): against Eigen's iterative solver on random SPD blocks over twelve
+  // decades of scale, nearly equal eigenvalues (a pair's isotropic tangential flexibility),
+  // strong coupling and a nearly singular block (a held component). The cubic's roots lose
+  // digits where two eigenvalues nearly coincide (5e-9 relative at worst here): rho is a step
+  // length, and the natural-map residual's scale moves by as little.
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> U(-1, 1), P(0, 1);
+  for (int trial = 0; trial < 3000; ++trial) {
+    const double scale = std::pow(10.0, -6 + 12 * P(gen));
+    const Eigen::Matrix3d B = Eigen::Matrix3d::NullaryExpr([&]() { return U(gen); });
+    Eigen::Matrix3d S;
+    switch (trial % 4) {
+      case 0: S = B * B.transpose() + 0.1 * Eigen::Matrix3d::Identity(); break;
+      case 1: S = Eigen::Vector3d(1.0, 1.0 + 1e-9 * P(gen), 0.5 + P(gen)).asDiagonal(); break;
+      case 2: S = B * B.transpose() + 1e-9 * Eigen::Matrix3d::Identity(); break;
+      default: {
+        const Eigen::Matrix3d Q = Eigen::HouseholderQR<Eigen::Matrix3d>(B).householderQ();
+        S = Q * Eigen::Vector3d(1.0, 1.0 - 1e-12, 0.3 * P(gen)).asDiagonal() * Q.transpose();
+      }
+    }
+    S = (scale * 0.5 * (S + S.transpose())).eval();
+    const double iterative = Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d>(S).eigenvalues().maxCoeff();
+    INFO("trial " << trial << ": " << largest_eigenvalue(S) << " against " << iterative);
+    REQUIRE(std::abs(largest_eigenvalue(S) - iterative) <= 1e-8 * iterative);
+    const Eigen::Matrix2d S2 = S.topLeftCorner<2, 2>();
+    const double iterative2 = Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d>(S2).eigenvalues().maxCoeff();
+    REQUIRE(std::abs(largest_eigenvalue(S2) - iterative2) <= 1e-12 * iterative2);
   }
 }
