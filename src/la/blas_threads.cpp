@@ -7,7 +7,6 @@
 #include <atomic>
 #include <filesystem>
 #include <fstream>
-#include <string>
 
 namespace rccm::blas_threads {
 
@@ -79,16 +78,20 @@ int others_running() {
   double minute, five, fifteen;
   int running = 0;
   if (!(loadavg >> minute >> five >> fifteen >> running)) return 0;
-  int own = 0;  // this process's threads in state R ("tid (comm) R ..."; comm may hold spaces and parentheses)
+  int own = 0;  // this process's threads in state R
   std::error_code error;
   for (const auto& task : std::filesystem::directory_iterator("/proc/self/task", error)) {
     std::ifstream stat(task.path() / "stat");
     std::string line;
     std::getline(stat, line);
-    const std::size_t close = line.rfind(')');
-    if (close != std::string::npos && close + 2 < line.size() && line[close + 2] == 'R') ++own;
+    if (stat_state(line) == 'R') ++own;
   }
   return std::max(0, running - own);
+}
+
+char stat_state(const std::string& line) {
+  const std::size_t close = line.rfind(')');
+  return close != std::string::npos && close + 2 < line.size() ? line[close + 2] : '?';
 }
 
 Wide::Wide() : Wide(openblas().set && openblas().wide > 1 ? others_running() : 0) {}

@@ -92,16 +92,23 @@ TEST_CASE("A wide scope leaves other programs' cores to them", "[blas-threads]")
 
 namespace {
 
-/// The state letter of process `pid`'s /proc stat line ('R': runnable).
+/// The state letter of process `pid` ('R': runnable).
 char process_state(pid_t pid) {
   std::ifstream stat("/proc/" + std::to_string(pid) + "/stat");
   std::string line;
   std::getline(stat, line);
-  const std::size_t close = line.rfind(')');
-  return close != std::string::npos && close + 2 < line.size() ? line[close + 2] : '?';
+  return blas_threads::stat_state(line);
 }
 
 }  // namespace
+
+TEST_CASE("A /proc stat line's state follows the last parenthesis of its command name", "[blas-threads]") {
+  CHECK(blas_threads::stat_state("4242 (rccm) R 1 4242 4242 0 -1") == 'R');
+  CHECK(blas_threads::stat_state("4243 (a) S (b) ) S 1 4242") == 'S');  // a name with ") S (" in it
+  CHECK(blas_threads::stat_state("4244 (x) R") == 'R');
+  CHECK(blas_threads::stat_state("") == '?');
+  CHECK(blas_threads::stat_state("4245 (x)") == '?');
+}
 
 TEST_CASE("Another program's runnable thread counts and this process's own do not", "[blas-threads]") {
   if (!std::ifstream("/proc/loadavg")) {

@@ -9,6 +9,8 @@
 // does nothing.
 #pragma once
 
+#include <string>
+
 namespace rccm::blas_threads {
 
 /// Gives the BLAS one thread (the first call of any function here does so).
@@ -63,6 +65,10 @@ int wide_threads(int wide, int cores, int others);
 /// Runnable threads of other programs now (the kernel's count of runnable threads, less this
 /// process's running ones); 0 where /proc cannot say.
 int others_running();
+
+/// The state letter of a /proc/<pid>[/task/<tid>]/stat line, "tid (comm) R ...": 'R' runnable;
+/// '?' if the line has none. comm may hold spaces and parentheses: the state follows the last ')'.
+char stat_state(const std::string& line);
 
 /// Within its lifetime the BLAS has wide_threads(wide(), cores, others) threads, `others` the
 /// runnable threads of other programs as the scope opens (others_running(), read only where
