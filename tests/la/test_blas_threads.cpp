@@ -104,7 +104,7 @@ char process_state(pid_t pid) {
 
 TEST_CASE("A /proc stat line's state follows the last parenthesis of its command name", "[blas-threads]") {
   CHECK(blas_threads::stat_state("4242 (rccm) R 1 4242 4242 0 -1") == 'R');
-  CHECK(blas_threads::stat_state("4243 (a) S (b) ) S 1 4242") == 'S');  // a name with ") S (" in it
+  CHECK(blas_threads::stat_state("4243 (a) R (b) S 1 4242") == 'S');  // a command name "a) R (b"
   CHECK(blas_threads::stat_state("4244 (x) R") == 'R');
   CHECK(blas_threads::stat_state("") == '?');
   CHECK(blas_threads::stat_state("4245 (x)") == '?');
