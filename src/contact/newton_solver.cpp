@@ -162,11 +162,11 @@ class NewtonSolver::Iteration {
   /// One Newton step on F(y) = 0 (docs/solvers/newton.md s3-s5): the direction, then an
   /// Armijo backtracking line search on theta = 1/2 |F|^2. False when the direction fails
   /// (singular Jacobian, no decrease, or no move).
-  bool newton_step(ActiveSetSystem<2>& active_set, std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>>& jacobian_lu) {
+  bool newton_step(ActiveSetSystem<2>& active_set, KeptJacobian& kept) {
     const Eigen::VectorXd F = function(s.y, s.u, &cases_);
     const double theta = 0.5 * F.squaredNorm();
     Eigen::VectorXd dy, du;
-    if (!direction(F, active_set, jacobian_lu, dy, du)) return false;
+    if (!direction(F, active_set, kept, dy, du)) return false;
     ++s.exact_solves;
     if (!dy.allFinite() || dy.norm() <= std::numeric_limits<double>::epsilon() * s.y.norm()) return false;
     double t = 1;
@@ -223,16 +223,16 @@ class NewtonSolver::Iteration {
 
   /// The Newton direction: J dy = -F with J = A + (B - A E) W0 (A, B block diagonal: the pairs'
   /// dF/dR and dF/dv; R = y - E u, u = W0 y + q0), and du = W0 dy. False if J is singular.
-  /// 3D: by GMRES preconditioned with `jacobian_lu` (an earlier J's), or J factorized into it.
+  /// 3D: by GMRES preconditioned with `kept` (an earlier J's LU), or J factorized into it.
   bool direction(const Eigen::VectorXd& F, ActiveSetSystem<2>& active_set,
-                 std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>>& jacobian_lu, Eigen::VectorXd& dy,
+                 KeptJacobian& kept, Eigen::VectorXd& dy,
                  Eigen::VectorXd& du) {
     if constexpr (dim == 2) {
       // F is affine on the cases' piece: y + dy is the zero of its affine extension, which is
       // the solution of the active-set system of those cases (its rows are F's rows combined:
       // docs/solvers/newton.md s3). That system keeps its factorization across solves.
       (void)F;
-      (void)jacobian_lu;
+      (void)kept;
       Pattern pattern(pb_.size());
       for (int i = 0; i < pb_.size(); ++i) {
         pattern[i].status = cases_[i].status;
@@ -246,45 +246,78 @@ class NewtonSolver::Iteration {
     } else {
       (void)active_set;
       const Eigen::Index m = s.y.size();
-      const Eigen::MatrixXd& W = *pb_.W0->dense();
-      Eigen::MatrixXd J(m, m);
-      Mat A, B;
-      for (int i = 0; i < pb_.size(); ++i) {
-        const Eigen::Index first = pb_.layout.offset(i);
-        cases_[i].jacobian(A, B);
-        // Pair i's rows A_i (e_i - E_i W0_i) + B_i W0_i, W0_i its rows (= columns: W0 is symmetric).
-        const Mat C = B - A * blocks_[i].E.asDiagonal();
-        J.template middleRows<dim>(first).noalias() = C * W.template middleCols<dim>(first).transpose();
-        J.template block<dim, dim>(first, first) += A;
-      }
+      jacobian_blocks();
       const Eigen::VectorXd b = -F;
       int iterations = 0;
-      if (jacobian_lu && jacobian_lu->rows() == m && preconditioned(J, *jacobian_lu, b, dy, iterations)) {
-        if (iterations > refresh_iterations) jacobian_lu.emplace(J);
-      } else {
-        jacobian_lu.emplace(J);
-        if (!(jacobian_lu->rcond() >= singular_jacobian)) {
-          jacobian_lu.reset();
-          return false;
-        }
-        dy = jacobian_lu->solve(b);
+      if (kept.lu && kept.lu->rows() == m && preconditioned(*kept.lu, b, dy, du, iterations)) {
+        if (iterations > refresh_iterations) kept.factorize(jacobian());
+        return true;
       }
+      kept.factorize(jacobian());
+      if (!(kept.lu->rcond() >= singular_jacobian)) {
+        kept.lu.reset();
+        return false;
+      }
+      dy = kept.lu->solve(b);
       du.resize(m);
       pb_.W0->multiply(dy, du);
     }
     return true;
   }
 
-  /// J dy = b by GMRES preconditioned with an earlier J's LU: true when dy's residual is within
-  /// direction_accuracy |b| after direction_iterations at most (`iterations`: how many).
-  static bool preconditioned(const Eigen::MatrixXd& J, const Eigen::PartialPivLU<Eigen::MatrixXd>& earlier,
-                             const Eigen::VectorXd& b, Eigen::VectorXd& dy, int& iterations) {
-    const GmresResult g = gmres([&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return J * v; },
-                                [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return earlier.solve(v); }, b,
-                                direction_accuracy, direction_iterations);
+  /// 3D: each pair's rows of J = A + C W0 at the current cases, C = B - A E (A, B: the pair's
+  /// dF/dR and dF/dv; R = y - E u, u = W0 y + q0), into A_ and C_.
+  void jacobian_blocks() {
+    A_.resize(pb_.size()), C_.resize(pb_.size());
+    Mat B;
+    for (int i = 0; i < pb_.size(); ++i) {
+      cases_[i].jacobian(A_[i], B);
+      C_[i] = B - A_[i] * blocks_[i].E.asDiagonal();
+    }
+  }
+
+  /// J z from z and w = W0 z, pair by pair: A_i z_i + C_i w_i.
+  Eigen::VectorXd jacobian_times(const Eigen::VectorXd& z, const Eigen::VectorXd& w) const {
+    Eigen::VectorXd out(z.size());
+    for (int i = 0; i < pb_.size(); ++i) pair<dim>(out, i) = A_[i] * pair<dim>(z, i) + C_[i] * pair<dim>(w, i);
+    return out;
+  }
+
+  /// J formed densely (3 m^2 products), for its factorization: pair i's rows C_i W0_i + A_i
+  /// on its diagonal block, W0_i its rows (= columns: W0 is symmetric).
+  Eigen::MatrixXd jacobian() const {
+    const Eigen::Index m = s.y.size();
+    const Eigen::MatrixXd& W = *pb_.W0->dense();
+    Eigen::MatrixXd J(m, m);
+    for (int i = 0; i < pb_.size(); ++i) {
+      const Eigen::Index first = pb_.layout.offset(i);
+      J.template middleRows<dim>(first).noalias() = C_[i] * W.template middleCols<dim>(first).transpose();
+      J.template block<dim, dim>(first, first) += A_[i];
+    }
+    return J;
+  }
+
+  /// J dy = b by GMRES preconditioned with an earlier J's LU, J applied without forming it (one
+  /// product with W0 per iteration, kept: du = W0 dy is their combination): true when dy's
+  /// residual, recomputed from dy and du, is within direction_accuracy |b| after
+  /// direction_iterations at most (`iterations`: how many).
+  bool preconditioned(const Eigen::PartialPivLU<Eigen::MatrixXd>& earlier, const Eigen::VectorXd& b,
+                      Eigen::VectorXd& dy, Eigen::VectorXd& du, int& iterations) const {
+    Eigen::MatrixXd Wz(b.size(), direction_iterations);
+    int products = 0;
+    const GmresResult g = gmres(
+        [&](const Eigen::VectorXd& z) -> Eigen::VectorXd {
+          pb_.W0->multiply(z, Wz.col(products));
+          return jacobian_times(z, Wz.col(products++));
+        },
+        [&](const Eigen::VectorXd& v) -> Eigen::VectorXd { return earlier.solve(v); }, b, direction_accuracy,
+        direction_iterations);
     iterations = g.iterations;
-    if (!g.x.allFinite() || !((J * g.x - b).norm() <= direction_accuracy * b.norm())) return false;
+    if (g.iterations == 0) return false;
+    const Eigen::VectorXd W_x = Wz.leftCols(g.iterations) * g.coefficients;
+    if (!g.x.allFinite() || !((jacobian_times(g.x, W_x) - b).norm() <= direction_accuracy * b.norm())) return false;
     dy = g.x;
+    du = W_x;
     return true;
   }
 
@@ -294,6 +327,7 @@ class NewtonSolver::Iteration {
   const std::vector<Augmentation> aug_;
   const Eigen::VectorXd E_;
   std::vector<AlartCurnier<dim>> cases_;  // at the current y
+  std::vector<Mat> A_, C_;                 // 3D: the pairs' rows of J = A + C W0 at cases_
 };
 
 ContactSolution NewtonSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
@@ -310,7 +344,7 @@ ContactSolution NewtonSolver::solve_in(const ContactProblem& pb, const Eigen::Ve
   ContactSolution& s = it.s;
   while (!it.verified() && s.iterations < params_.max_iterations) {
     ++s.iterations;
-    if (it.newton_step(active_set_, jacobian_lu_)) continue;
+    if (it.newton_step(active_set_, kept_jacobian_)) continue;
     // The Newton direction failed: a few projected sweeps, then Newton from there.
     for (int k = 0; k < fallback_sweeps && s.iterations < params_.max_iterations; ++k, ++s.iterations) it.sweep();
   }

@@ -284,6 +284,9 @@ TEST_CASE("warm starts along a drifting problem: about one Newton step per solve
     // nearby start (44 to 60 for the four 3D trials, with J factorized at every step as with
     // the LU kept as GMRES's preconditioner).
     CHECK(iterations <= 20 * (dim == 2 ? 2 : 3));
+    // 3D: the kept LU serves GMRES for most steps, J never formed there; it is factorized at
+    // the cold solve's first step and where GMRES fell short (measured: 1, 5, 1, 6 times).
+    if (dim == 3) CHECK(warm.jacobian_factorizations() <= iterations / 5);
   }
 }
 

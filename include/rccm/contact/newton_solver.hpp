@@ -12,10 +12,11 @@
 //
 // In 2D F is piecewise affine and a Newton step solves the linear problem of the pairs'
 // cases, the exact step's system (active_set.hpp), which keeps its factorization from one
-// solve to the next; in 3D the Jacobian J (with the curvature of the friction disk) is
-// assembled at every step (3 m^2 products) and its system solved by GMRES preconditioned with
-// the LU of an earlier J, kept from step to step and solve to solve, and factorized afresh (2/3 m^3)
-// only where GMRES does not reach the direction's accuracy in a few iterations.
+// solve to the next; in 3D the Jacobian J = A + C W0 (A, C block diagonal, with the curvature
+// of the friction disk) is applied pair by pair after a product with W0, never formed, in GMRES
+// preconditioned with the LU of an earlier J, kept from step to step and solve to solve; J is
+// formed (3 m^2 products) and factorized afresh (2/3 m^3) only where GMRES does not reach the
+// direction's accuracy in a few iterations.
 #pragma once
 
 #include "rccm/contact/active_set.hpp"
@@ -34,8 +35,22 @@ class NewtonSolver final : public ContactSolver {
   std::string failure_advice() const override;
   void forget_W0() override {
     active_set_.forget();
-    jacobian_lu_.reset();
+    kept_jacobian_.lu.reset();
   }
+  /// 3D: the Jacobians factorized so far (a cold solve's first step, and where GMRES
+  /// preconditioned by the kept LU fell short or took more than a few iterations).
+  int jacobian_factorizations() const { return kept_jacobian_.factorizations; }
+
+  /// The 3D steps' preconditioner: the LU of the last Jacobian factorized (a cache: results
+  /// do not depend on it beyond the direction's accuracy), and how many were factorized.
+  struct KeptJacobian {
+    std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
+    int factorizations = 0;
+    void factorize(const Eigen::MatrixXd& J) {
+      lu.emplace(J);
+      ++factorizations;
+    }
+  };
 
  private:
   ContactSolution solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
@@ -48,8 +63,7 @@ class NewtonSolver final : public ContactSolver {
   // The 2D Newton steps' system and its factorization, reused while the cases repeat (a
   // cache: results do not depend on it beyond the tolerance).
   ActiveSetSystem<2> active_set_;
-  // The 3D steps' preconditioner: the LU of the last Jacobian factorized (a cache as well).
-  std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> jacobian_lu_;
+  KeptJacobian kept_jacobian_;
 };
 
 }  // namespace rccm
