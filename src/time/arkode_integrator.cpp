@@ -337,7 +337,7 @@ IntegratorStats ArkodeIntegrator::stats() const {
   const Impl& m = *impl_;
   IntegratorStats s;
   s.steps = m.counter(ARKStepGetNumSteps);
-  s.rejected = m.counter(ARKStepGetNumErrTestFails) + m.counter(ARKStepGetNumNonlinSolvConvFails);
+  s.rejected = m.counter(ARKStepGetNumErrTestFails) + m.counter(ARKStepGetNumStepSolveFails);
   long nfe = 0, nfi = 0;
   ARKStepGetNumRhsEvals(m.mem, &nfe, &nfi);
   s.rhs_evaluations = nfe + nfi;

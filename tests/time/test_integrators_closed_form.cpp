@@ -144,3 +144,17 @@ TEST_CASE("time convergence orders on the closed form: Euler 1, ARKODE's DIRK an
     }
   }
 }
+
+TEST_CASE("ARKODE at a fixed step rejects no step: stage solves retried with a fresh Jacobian are not rejections",
+          "[integrator]") {
+  // B1 at integrator.fixed_step = 0.01 s: 1000 steps and the two output times' short ones. Its
+  // stages' Newton iterations fail 14 times with an out-of-date Jacobian and converge with a
+  // fresh one at the same step (a fixed step is never cut: a stage that still fails stops the
+  // run); those were once counted as rejected steps.
+  const RunResult r =
+      Simulation(load_config(test::shipped("b1.cfg"), {"integrator.fixed_step=0.01"}), RunOptions{}).run();
+  REQUIRE(r.stopped.empty());
+  CHECK(r.integrator.rejected == 0);
+  CHECK(r.integrator.steps == 1002);
+  CHECK(r.steps.size() == 1003);  // each step tried once: every accepted step recorded once, with t = 0
+}

@@ -22,7 +22,7 @@ struct StateSlices {
 
 struct IntegratorStats {
   long steps = 0;              // accepted steps
-  long rejected = 0;           // failed error tests and nonlinear solves (ARKODE)
+  long rejected = 0;           // steps tried again: failed error tests and failed stage solves (ARKODE)
   long rhs_evaluations = 0;    // f(t, beta) calls, each a contact solve
   long newton_iterations = 0;  // ARKODE nonlinear iterations; fixed-point iterations (rate-independent)
   StateSlices slices;          // of the state among the processes (ARKODE under mpirun)
