@@ -94,7 +94,9 @@ char stat_state(const std::string& line) {
   return close != std::string::npos && close + 2 < line.size() ? line[close + 2] : '?';
 }
 
-Wide::Wide() : Wide(openblas().set && openblas().wide > 1 ? others_running() : 0) {}
+bool follows_load() { return omp_get_dynamic() != 0; }
+
+Wide::Wide() : Wide(openblas().set && openblas().wide > 1 && follows_load() ? others_running() : 0) {}
 
 Wide::Wide(int others) {
   OpenBlas& b = openblas();

@@ -149,13 +149,29 @@ TEST_CASE("Another program's runnable thread counts and this process's own do no
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   int least = 1 << 30;
   for (int look = 0; look < 5; ++look) least = std::min(least, blas_threads::others_running());
-  int wide_beside = 0;  // a wide scope's threads beside it: at most the cores it leaves
+  // A wide scope's threads beside it: by default the start-up count whatever the load (the same
+  // bits in every rerun); following the load (OMP_DYNAMIC=true), at most the cores it leaves.
+  int wide_fixed = 0, wide_following = 0;
+  const bool dynamic_before = omp_get_dynamic() != 0;
   if (blas_threads::current() > 0) {
-    const blas_threads::Wide scope;
-    wide_beside = blas_threads::current();
+    omp_set_dynamic(0);
+    CHECK(!blas_threads::follows_load());
+    {
+      const blas_threads::Wide scope;
+      wide_fixed = blas_threads::current();
+    }
+    omp_set_dynamic(1);
+    CHECK(blas_threads::follows_load());
+    {
+      const blas_threads::Wide scope;
+      wide_following = blas_threads::current();
+    }
   }
+  omp_set_dynamic(dynamic_before);
   kill(child, SIGKILL);
   waitpid(child, nullptr, 0);
   CHECK(least >= 1);
-  CHECK(wide_beside <= std::max(1, std::min(blas_threads::wide(), omp_get_num_procs() - 1)));
+  if (blas_threads::current() == 0) return;  // not OpenBLAS
+  CHECK(wide_fixed == blas_threads::wide());
+  CHECK(wide_following <= std::max(1, std::min(blas_threads::wide(), omp_get_num_procs() - 1)));
 }

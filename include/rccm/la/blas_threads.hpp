@@ -70,9 +70,14 @@ int others_running();
 /// '?' if the line has none. comm may hold spaces and parentheses: the state follows the last ')'.
 char stat_state(const std::string& line);
 
-/// Within its lifetime the BLAS has wide_threads(wide(), cores, others) threads, `others` the
-/// runnable threads of other programs as the scope opens (others_running(), read only where
-/// wide() > 1); one before and after.
+/// Whether the wide scopes follow the load (OMP_DYNAMIC=true, or omp_set_dynamic): OpenBLAS
+/// rounds a factorization in one thread differently from one in two, so a count that follows
+/// the load gives reruns other bits (within the tolerances). Off by default, as OpenMP's own
+/// dynamic adjustment: a rerun on the same machine gives the same bits.
+bool follows_load();
+/// Within its lifetime the BLAS has wide_threads(wide(), cores, others) threads; by default
+/// `others` = 0 (the start-up count), where follows_load() the runnable threads of other
+/// programs as the scope opens (others_running(), read only where wide() > 1); one before and after.
 class Wide {
  public:
   Wide();
