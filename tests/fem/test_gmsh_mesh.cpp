@@ -208,6 +208,12 @@ Physical Surface("layer") = {1};
 )"),
           "gmsh stopped abnormally while reading or meshing the file (signal 6, Aborted): gmsh 4.8 aborts on errors it "
           "cannot report, most often a mesh size of 0 or below on a Point");
+  // A MSH 2.2 file whose header was edited to another version: gmsh's message, then the format.
+  const std::string v22 = test::read_text(fixtures + "two_blocks_v22.msh");
+  REQUIRE(v22.find("$MeshFormat\n2.2 0 8\n") == 0);
+  for (const char* version : {"4.0", "3.0"})
+    refused(geo(std::string("header_") + version + ".msh", "$MeshFormat\n" + std::string(version) + v22.substr(15)),
+            std::string("(its header states MSH ") + version + "; rccm reads MSH 2.2 and 4.1");
   refused(fixtures + "missing.msh", "cannot read the file");
   refused(fixtures + "../../config/b1.cfg", "a mesh file is a gmsh .msh or .geo file");
 }
