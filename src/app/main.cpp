@@ -263,6 +263,10 @@ int main(int argc, char** argv) {
     // A restart writes where the run it continues wrote; -o is output.directory.
     if (!restart_dir.empty()) output_dir = restart_dir;
     if (!output_dir.empty()) overrides.push_back(rccm::string_override("output.directory", output_dir));
+    if (*run) {  // from the config's reading on, a signal says where it stopped the run
+      rccm::install_stop_handlers();
+      rccm::exit_at_once_until_writing();
+    }
     rccm::Config cfg = rccm::load_config(config_file, overrides);
     if (!output_dir.empty()) cfg.origins["output.directory"] = restart_dir.empty() ? "-o" : "--restart " + restart_dir;
     if (*run) {
@@ -272,8 +276,6 @@ int main(int argc, char** argv) {
       options.write_files = root;
       options.force = force;
       options.restart = !restart_dir.empty();
-      rccm::install_stop_handlers();
-      rccm::exit_at_once_until_writing();
       const rccm::RunResult r = rccm::Simulation(cfg, options).run();
       if (!root) return 0;
       print_totals(r);
