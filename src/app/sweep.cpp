@@ -384,11 +384,15 @@ void write_sweep_summary(std::ostream& out, const std::string& directory, const 
 
 void write_sweep_jobs(const std::string& directory, const std::vector<SweepCase>& cases, const std::string& rccm_path,
                       const std::string& config_file) {
+  // Absolute paths: a job runs from wherever the cluster's script starts it. A program name
+  // without a '/' was found on the PATH and is left for the PATH to find again.
+  const auto absolute = [](const std::string& path) { return std::filesystem::absolute(path).lexically_normal().string(); };
+  const std::string program = rccm_path.find('/') == std::string::npos ? rccm_path : absolute(rccm_path);
   AtomicFile jobs_file(directory + "/jobs.txt");
   for (const SweepCase& c : cases) {
-    jobs_file.stream() << shell_quoted(rccm_path) << " run " << shell_quoted(config_file) << " -q";
+    jobs_file.stream() << shell_quoted(program) << " run " << shell_quoted(absolute(config_file)) << " -q";
     for (const std::string& o : c.overrides) jobs_file.stream() << " --set " << shell_quoted(o);
-    jobs_file.stream() << " -o " << shell_quoted(directory + "/" + c.name) << "\n";
+    jobs_file.stream() << " -o " << shell_quoted(absolute(directory + "/" + c.name)) << "\n";
   }
   jobs_file.commit();
 }

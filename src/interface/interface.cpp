@@ -218,14 +218,20 @@ class PairBuilder {
     fail(setting, m.str());
   }
 
-  /// Why a node of the boundary set lies on none of its facets: the bodies whose cells share it
-  /// are fused there, or the set is a point or lies inside a body.
-  std::string why_not_on_boundary(int node) const {
+  /// The bodies whose cells hold `node`, in the order of the cells.
+  std::vector<int> bodies_at(int node) const {
     std::vector<int> bodies;
     for (std::size_t c = 0; c < mesh_.cells.size(); ++c)
       if (std::find(mesh_.cells[c].begin(), mesh_.cells[c].end(), node) != mesh_.cells[c].end() &&
           std::find(bodies.begin(), bodies.end(), mesh_.cell_body[c]) == bodies.end())
         bodies.push_back(mesh_.cell_body[c]);
+    return bodies;
+  }
+
+  /// Why a node of the boundary set lies on none of its facets: the bodies whose cells share it
+  /// are fused there, or the set is a point or lies inside a body.
+  std::string why_not_on_boundary(int node) const {
+    const std::vector<int> bodies = bodies_at(node);
     if (bodies.size() > 1)
       return "bodies '" + mesh_.body_names[bodies[0]] + "' and '" + mesh_.body_names[bodies[1]] +
              "' share this node: their meshes are fused there (gmsh's BooleanFragments, or one surface shared by "
@@ -255,11 +261,17 @@ class PairBuilder {
     if (tolerance == 0) tolerance = 1e-3 * shortest;
     std::vector<char> in_other(mesh_.num_nodes(), 0);
     for (int n : other) in_other[n] = 1;
-    for (int n : nodes_)
-      if (in_other[n])
-        fail(".opposite", "node " + point(mesh_.nodes[n], mesh_.dim) + " belongs to both '" + p_.boundary + "' and '" +
+    for (int n : nodes_) {
+      if (!in_other[n]) continue;
+      const std::vector<int> bodies = bodies_at(n);
+      if (bodies.size() == 1)  // two sets of one body that meet (its bottom and its end)
+        fail(".opposite", "'" + p_.boundary + "' and '" + p_.opposite + "' are both on body '" +
+                              mesh_.body_names[bodies[0]] + "' (they meet at node " + point(mesh_.nodes[n], mesh_.dim) +
+                              "): interface.opposite names the set of the other body that faces '" + p_.boundary + "'");
+      fail(".opposite", "node " + point(mesh_.nodes[n], mesh_.dim) + " belongs to both '" + p_.boundary + "' and '" +
                               p_.opposite + "': the bodies share their nodes there; give each body its own curve (3D: "
                               "surface) along the interface (its own points), meshed alike");
+    }
     // Counted before matching: no tolerance pairs sets of different sizes one to one.
     if (other.size() != nodes_.size())
       fail(".opposite", "the meshes of '" + p_.boundary + "' and '" + p_.opposite + "' do not match: '" + p_.opposite +

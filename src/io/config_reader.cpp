@@ -532,6 +532,10 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
       r.fail(mat[isotropic], "an isotropic setting beside E1: give E and nu (isotropic) or E1, E2, E3, nu12, ... "
                              "(orthotropic), not both");
   if (!p.orthotropic) {
+    for (const char* orthotropic : {"E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23", "angle", "axis3"})
+      if (mat.exists(orthotropic))
+        r.fail(mat[orthotropic], "a setting of an orthotropic material, and this one is isotropic (E, nu): an "
+                                 "orthotropic material gives E1, E2, E3, nu12, nu13, nu23, G12 (3D: G13, G23) instead of E and nu");
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
     r.check(p.E > 0, mat["E"], "must be > 0", p.E);

@@ -331,12 +331,22 @@ TEST_CASE("a sweep whose first case fails: the summary keeps its columns, the fa
   CHECK_THAT(summary.rows[0].back(), Catch::Contains("did not converge"));
   CHECK(summary.rows[3][3] == "complete");
   CHECK(std::stod(summary.rows[3][4]) > 0);
-  // The job list reruns each case on its own, quoted for the shell.
+  // The job list reruns each case on its own, quoted for the shell, from any directory: the
+  // config, the program given with a directory and the cases' directories made absolute.
   write_sweep_jobs(dir.string(), cases, "rccm", b1);
   std::ifstream jobs(dir / "jobs.txt");
   std::string first;
   std::getline(jobs, first);
-  CHECK_THAT(first, Catch::Contains("--set 'solver.max_iterations=2'") && Catch::Contains(" -o '"));
+  CHECK_THAT(first, Catch::StartsWith("'rccm' run '" + b1 + "' -q") && Catch::Contains("--set 'solver.max_iterations=2'") &&
+                        Catch::Contains(" -o '" + (dir / cases[0].name).string() + "'"));
+  const fs::path here = fs::current_path();
+  fs::current_path(dir);
+  write_sweep_jobs(".", cases, "./bin/rccm", "study/b1.cfg");
+  fs::current_path(here);
+  std::ifstream relative(dir / "jobs.txt");
+  std::getline(relative, first);
+  CHECK_THAT(first, Catch::StartsWith("'" + (dir / "bin/rccm").string() + "' run '" + (dir / "study/b1.cfg").string() + "' -q") &&
+                        Catch::EndsWith(" -o '" + (dir / cases[0].name).string() + "'"));
   fs::remove_all(dir);
 }
 
