@@ -223,7 +223,7 @@ class NewtonSolver::Iteration {
 
   /// The Newton direction: J dy = -F with J = A + (B - A E) W0 (A, B block diagonal: the pairs'
   /// dF/dR and dF/dv; R = y - E u, u = W0 y + q0), and du = W0 dy. False if J is singular.
-  /// 3D: by GMRES preconditioned with `kept` (an earlier J's LU), or J factorized into it.
+  /// 3D: by GMRES preconditioned with `kept` (an earlier J's factorization), or J factorized into it.
   bool direction(const Eigen::VectorXd& F, ActiveSetSystem<2>& active_set,
                  KeptJacobian& kept, Eigen::VectorXd& dy,
                  Eigen::VectorXd& du) {
@@ -249,13 +249,18 @@ class NewtonSolver::Iteration {
       jacobian_blocks();
       const Eigen::VectorXd b = -F;
       int iterations = 0;
-      if (kept.lu && kept.lu->rows() == m && preconditioned(*kept.lu, b, dy, du, iterations)) {
-        if (iterations > refresh_iterations) kept.factorize(jacobian());
+      if (kept.serves(m) && preconditioned(kept, b, dy, du, iterations)) {
+        if (iterations > refresh_iterations) factorize(kept);
         return true;
       }
-      kept.factorize(jacobian());
+      factorize(kept);
+      if (kept.hodlr) {  // J's compressed factorization, to the compression's accuracy: GMRES finishes
+        if (preconditioned(kept, b, dy, du, iterations)) return true;
+        kept.reset();
+        return false;
+      }
       if (!(kept.lu->rcond() >= singular_jacobian)) {
-        kept.lu.reset();
+        kept.reset();
         return false;
       }
       dy = kept.lu->solve(b);
@@ -263,6 +268,18 @@ class NewtonSolver::Iteration {
       pb_.W0->multiply(dy, du);
     }
     return true;
+  }
+
+  /// 3D: J at the current cases factorized into `kept`: formed and by its LU on a dense W0,
+  /// mixed from W0's compression on a compressed one.
+  void factorize(KeptJacobian& kept) const {
+    const HodlrMatrix* compressed = pb_.W0->compressed_preconditioner();
+    if (compressed == nullptr) return kept.factorize(jacobian());
+    const Eigen::Index m = s.y.size();
+    Eigen::MatrixXd Cw(dim, m), Cy(dim, m);
+    for (int i = 0; i < pb_.size(); ++i)
+      Cw.template middleCols<dim>(Eigen::Index(dim) * i) = C_[i], Cy.template middleCols<dim>(Eigen::Index(dim) * i) = A_[i];
+    kept.factorize(*compressed, Cw, Cy);
   }
 
   /// 3D: each pair's rows of J = A + C W0 at the current cases, C = B - A E (A, B: the pair's
@@ -297,12 +314,12 @@ class NewtonSolver::Iteration {
     return J;
   }
 
-  /// J dy = b by GMRES preconditioned with an earlier J's LU, J applied without forming it (one
+  /// J dy = b by GMRES preconditioned with an earlier J's factorization, J applied without forming it (one
   /// product with W0 per iteration, kept: du = W0 dy is their combination): true when dy's
   /// residual, recomputed from dy and du, is within direction_accuracy |b| after
   /// direction_iterations at most (`iterations`: how many).
-  bool preconditioned(const Eigen::PartialPivLU<Eigen::MatrixXd>& earlier, const Eigen::VectorXd& b,
-                      Eigen::VectorXd& dy, Eigen::VectorXd& du, int& iterations) const {
+  bool preconditioned(const KeptJacobian& earlier, const Eigen::VectorXd& b, Eigen::VectorXd& dy,
+                      Eigen::VectorXd& du, int& iterations) const {
     Eigen::MatrixXd Wz(b.size(), direction_iterations);
     int products = 0;
     const GmresResult g = gmres(
@@ -330,10 +347,29 @@ class NewtonSolver::Iteration {
   std::vector<Mat> A_, C_;                 // 3D: the pairs' rows of J = A + C W0 at cases_
 };
 
+void NewtonSolver::KeptJacobian::factorize(const Eigen::MatrixXd& J) {
+  reset();
+  lu.emplace(J);
+  ++factorizations;
+}
+
+void NewtonSolver::KeptJacobian::factorize(const HodlrMatrix& W0, const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy) {
+  reset();
+  mixed.emplace(W0.rows_mixed(Cw, Cy));
+  hodlr.emplace(*mixed);
+  ++factorizations;
+}
+
+void NewtonSolver::KeptJacobian::reset() {
+  lu.reset();
+  hodlr.reset();
+  mixed.reset();
+}
+
 ContactSolution NewtonSolver::solve_loaded(const ContactProblem& pb, const Eigen::VectorXd& Rbar_start,
                                           const Eigen::VectorXd& u_start) {
-  if (!pb.W0->dense() && (pb.layout.dim == 3 || !pb.W0->compressed()))  // 2D: the active-set system takes either
-    throw SolveError("the Newton contact solver needs a dense W0 (or in 2D a compressed one); this W0 is not: use solver.method = \"bipotential\"");
+  if (!pb.W0->dense() && !pb.W0->compressed())
+    throw SolveError("the Newton contact solver needs a dense or compressed W0; this W0 is neither: use solver.method = \"bipotential\"");
   return pb.layout.dim == 2 ? solve_in<2>(pb, Rbar_start, u_start) : solve_in<3>(pb, Rbar_start, u_start);
 }
 

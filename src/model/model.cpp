@@ -154,7 +154,7 @@ Model::Model(const Config& cfg, Mesh mesh)
   // and the 3D Newton step read W0 dense); otherwise dense, with the factor block it comes from,
   // and below solver.compressed_min_nodes the exact step's matrix, its LU and its inverse,
   // each (dim m)^2 doubles.
-  compress_W0_ = interface_.size() >= cfg.solver.compressed_min_nodes && cfg.solver.reads_compressed_W0(interface_.layout.dim);
+  compress_W0_ = interface_.size() >= cfg.solver.compressed_min_nodes && cfg.solver.reads_compressed_W0();
   const double m = interface_.layout.offset(interface_.size());
   // Three more (dim m)^2 matrices beside W0 and its factor block: the exact step's (the
   // bipotential solver's when it takes the step, 2D Newton's always) or rccm's inverse of W0

@@ -147,14 +147,12 @@ struct SolverParams {
   double relaxation = 1.0;       // Jacobi under-relaxation of the update, in (0, 1]
   bool active_set = true;        // the exact step: solve the linear problem of a status pattern (default: 2D only)
   int active_set_max_nodes = 4096;  // beyond, on a dense W0: sweeps only (the exact step keeps two dense (2n)^2 matrices: 32 n^2 bytes)
-  int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, 2D newton)
+  int compressed_min_nodes = 512;   // from this many contact pairs on, W0 is compressed (HODLR) from sparse solves, never dense, and the exact step mixes its matrix from it (bipotential, newton)
   bool springs_follow_beta = false;  // W0's springs follow beta where they lag it (default: 3D only; docs/MODEL.md s4)
   LinearSolverParams linear;        // the body's K0 solves (setup: W0, load responses; body state at output)
-  /// Whether the contact solver works on a compressed W0 (bipotential; Newton in 2D): where
+  /// Whether the contact solver works on a compressed W0 (bipotential, newton): where
   /// compressed_min_nodes applies.
-  bool reads_compressed_W0(int dim) const {
-    return method == ContactMethod::Bipotential || (method == ContactMethod::Newton && dim == 2);
-  }
+  bool reads_compressed_W0() const { return method == ContactMethod::Bipotential || method == ContactMethod::Newton; }
 };
 
 /// How beta evolves: integrated by ARKODE or explicit Euler, the rate-independent limit,

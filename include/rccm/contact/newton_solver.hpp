@@ -8,15 +8,16 @@
 // `iterations` counts Newton steps (a step whose direction fails included) and fallback
 // sweeps, `exact_solves` the linear solves with the Jacobian (rejected directions included);
 // the solve stops on the bipotential solver's scaled natural-map residual (solver.tolerance),
-// so that the two agree to it. Needs a dense W0.
+// so that the two agree to it. Needs a dense or compressed W0.
 //
 // In 2D F is piecewise affine and a Newton step solves the linear problem of the pairs'
 // cases, the exact step's system (active_set.hpp), which keeps its factorization from one
 // solve to the next; in 3D the Jacobian J = A + C W0 (A, C block diagonal, with the curvature
 // of the friction disk) is applied pair by pair after a product with W0, never formed, in GMRES
-// preconditioned with the LU of an earlier J, kept from step to step and solve to solve; J is
-// formed (3 m^2 products) and factorized afresh (2/3 m^3) only where GMRES does not reach the
-// direction's accuracy in a few iterations.
+// preconditioned with the factorization of an earlier J, kept from step to step and solve to
+// solve; J is factorized afresh only where GMRES does not reach the direction's accuracy in a
+// few iterations: formed (3 m^2 products) and by its LU (2/3 m^3) on a dense W0, mixed from
+// W0's compression and factorized compressed (m r^2 log^2 m) on a compressed one.
 #pragma once
 
 #include "rccm/contact/active_set.hpp"
@@ -35,21 +36,31 @@ class NewtonSolver final : public ContactSolver {
   std::string failure_advice() const override;
   void forget_W0() override {
     active_set_.forget();
-    kept_jacobian_.lu.reset();
+    kept_jacobian_.reset();
   }
   /// 3D: the Jacobians factorized so far (a cold solve's first step, and where GMRES
-  /// preconditioned by the kept LU fell short or took more than a few iterations).
+  /// preconditioned by the kept factorization fell short or took more than a few iterations).
   int jacobian_factorizations() const { return kept_jacobian_.factorizations; }
 
-  /// The 3D steps' preconditioner: the LU of the last Jacobian factorized (a cache: results
-  /// do not depend on it beyond the direction's accuracy), and how many were factorized.
+  /// The 3D steps' preconditioner, the factorization of the last Jacobian factorized (a cache:
+  /// results do not depend on it beyond the direction's accuracy): its LU where W0 is dense,
+  /// where W0 is compressed J mixed from W0's compression (J = A + C W0 row by row, HODLR) and
+  /// factorized compressed; and how many were factorized.
   struct KeptJacobian {
     std::optional<Eigen::PartialPivLU<Eigen::MatrixXd>> lu;
+    std::optional<HodlrMatrix> mixed;
+    std::optional<HodlrSolver> hodlr;
     int factorizations = 0;
-    void factorize(const Eigen::MatrixXd& J) {
-      lu.emplace(J);
-      ++factorizations;
-    }
+
+    /// Whether it is a factorization of m rows.
+    bool serves(Eigen::Index m) const { return lu ? lu->rows() == m : hodlr && mixed->size() == m; }
+    /// Its inverse times v.
+    Eigen::VectorXd solve(const Eigen::VectorXd& v) const { return lu ? Eigen::VectorXd(lu->solve(v)) : Eigen::VectorXd(hodlr->solve(v)); }
+    /// J formed densely, factorized by its LU.
+    void factorize(const Eigen::MatrixXd& J);
+    /// J = Cy + Cw W0 mixed from W0's compression (Cw, Cy: the pairs' blocks side by side).
+    void factorize(const HodlrMatrix& W0, const Eigen::MatrixXd& Cw, const Eigen::MatrixXd& Cy);
+    void reset();
   };
 
  private:
