@@ -44,32 +44,38 @@ void print_tables(std::ostream& out, const std::vector<const CompareCase*>& case
     for (const CompareCase* c : cases)
       if (c->config.integrator.method == m) group.push_back(c);
     out << "\n" << method_name(m);
-    if (m != Method::Arkode) out << ", " << group.front()->config.time.steps << " fixed steps";
-    out << " (the paper's Tables 1-2 layout)\n";
-    const std::vector<const StepRecord*> columns = paper_table_columns(group.front()->result);
+    if (m != Method::Arkode)
+      out << ", " << group.front()->config.time.steps << " fixed steps (and a step to each output time off them)";
+    out << ": the paper's Tables 1-2 layout\n"
+        << "(beta iterations: contact solves per step; contact iterations: sweeps or Newton steps per solve;\n"
+        << "wall times, where the paper gives CPU times)\n";
+    // The columns: steps every run reached (ARKODE's runs take their own numbers of steps).
+    int last = 1 << 30;
+    for (const CompareCase* c : group) last = std::min(last, static_cast<int>(c->result.steps.size()) - 1);
     char buf[64];
     std::snprintf(buf, sizeof buf, "%-34s", "step");
     out << buf;
-    for (const StepRecord* s : columns) out << fmt("%10.0f", s->step);
-    out << "   total CPU [s]\n";
+    for (const PaperColumn& col : paper_table_columns(group.front()->config, group.front()->result, last))
+      out << fmt("%10.0f", col.step);
+    out << "  total wall [s]\n";
     for (const CompareCase* c : group) {
-      const std::vector<const StepRecord*> own = paper_table_columns(c->result);
+      const std::vector<PaperColumn> own = paper_table_columns(c->config, c->result, last);
       const std::string solver = contact_method_name(c->config.solver.method);
       const auto row = [&](const std::string& label, auto value, const std::string& total) {
         std::snprintf(buf, sizeof buf, "%-34s", label.c_str());
         out << buf;
-        for (const StepRecord* s : own) out << value(*s);
+        for (const PaperColumn& col : own) out << value(*col.record);
         out << total << "\n";
       };
       row(solver + ": beta iterations", [](const StepRecord& s) { return fmt("%10.0f", s.contact_solves); }, "");
       row(solver + ": contact iterations", [](const StepRecord& s) { return fmt("%10.1f", s.sweeps_mean); }, "");
-      row(solver + ": CPU [s]", [](const StepRecord& s) { return fmt("%10.2e", s.cpu_seconds); },
+      row(solver + ": wall [s]", [](const StepRecord& s) { return fmt("%10.2e", s.wall_seconds); },
           fmt("%16.3f", c->result.wall_seconds));
     }
     for (const CompareCase* c : group) {
       if (c == group.front()) continue;
       const ContactMethod m = c->config.solver.method, first = group.front()->config.solver.method;
-      out << "total CPU " << contact_method_name(m) << " / " << contact_method_name(first) << ": "
+      out << "total wall " << contact_method_name(m) << " / " << contact_method_name(first) << ": "
           << fmt("%.2f", c->result.wall_seconds / std::max(group.front()->result.wall_seconds, 1e-9));
       // The paper compares the classical RCCM algorithm with the bipotential only.
       if (m == ContactMethod::Rccm && first == ContactMethod::Bipotential) out << " (" << paper_ratios << ")";

@@ -171,7 +171,7 @@ void Recorder::step(const AcceptedStep& a) {
     if (std::abs(body_.force[k]) > std::abs(result_.peak_force[k]))
       result_.peak_force[k] = body_.force[k], result_.peak_time[k] = a.t;
   result_.steps.push_back({a.step, a.t, a.dt, a.counts.contact_solves, a.counts.sweeps_per_solve(),
-                           a.counts.max_sweeps, a.cpu_seconds});
+                           a.counts.max_sweeps, a.wall_seconds});
   if (writer_) writer_->step(a, body_, energy_->terms());
   rows_step_ = a.step;  // its rows are written: a checkpoint may now stand at it
   if (a.step == 0 || (cfg_.output.every > 0 && a.step % cfg_.output.every == 0)) {

@@ -147,7 +147,7 @@ void ResultWriter::step(const AcceptedStep& a, const BodyState& b, const EnergyT
                            double(count[2]),
                            double(count[0]),
                            a.residuals.equilibrium,
-                           a.cpu_seconds};
+                           a.wall_seconds};
   const Layout& L = model_.interface().layout;
   const Eigen::VectorXd Radh = adhesive_forces(model_, a.state);
   for (int i : model_.watched()) {

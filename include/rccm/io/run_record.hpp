@@ -27,7 +27,7 @@ struct StepRecord {
   long contact_solves = 0;
   double sweeps_mean = 0;
   int sweeps_max = 0;
-  double cpu_seconds = 0;
+  double wall_seconds = 0;
 };
 
 /// What a run has said while it ran (Recorder: a crawl, a body leaving small strains), kept

@@ -1,5 +1,6 @@
 // The run report: the paper's Table 1 layout (work per step at steps 1, 10, 40, 60, 100,
-// 150, 200 or the nearest ones), integrator totals, energy balance and wall time; as text
+// 150, 200 or the nearest ones; its CPU times are wall times here), integrator totals, energy
+// balance and wall time; as text
 // (report.txt) and JSON (report.json) for scripts.
 #pragma once
 
@@ -12,8 +13,18 @@
 
 namespace rccm {
 
-/// The accepted steps nearest to the paper's table columns (steps 1, 10, 40, 60, 100, 150, 200).
-std::vector<const StepRecord*> paper_table_columns(const RunResult& r);
+/// A column of the paper's Table 1 layout: the step the paper would number it, and the
+/// accepted step recorded there.
+struct PaperColumn {
+  int step;
+  const StepRecord* record;
+};
+/// The accepted steps of the paper's table columns (steps 1, 10, 40, 60, 100, 150, 200). On a
+/// fixed grid of time.steps steps (every method but ARKODE) step k is the one that ends at
+/// k T / steps, whatever output times off the grid added between (B1's t1 = 3.571 s, a
+/// rounded 75 T / 210); with ARKODE the k-th accepted step. At most `last` (and the run's
+/// last step): the last column of several runs compared side by side is one they all reached.
+std::vector<PaperColumn> paper_table_columns(const Config& cfg, const RunResult& r, int last = 1 << 30);
 
 void write_report_text(std::ostream& out, const Config& cfg, const RunResult& r);
 

@@ -43,7 +43,7 @@ struct AcceptedStep {
   const ContactSolution& solution;  // the commit solve
   ContactResiduals residuals;       // its Signorini-Coulomb residuals
   SolveCounts counts;               // solves of this step (stages and commit)
-  double cpu_seconds = 0;           // wall time of this step
+  double wall_seconds = 0;          // wall time since the last step was accepted
   const InterfaceState* midpoint = nullptr;  // the state halfway through the step (track_midpoints)
 };
 
