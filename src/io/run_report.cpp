@@ -21,6 +21,8 @@ std::vector<PaperColumn> paper_table_columns(const Config& cfg, const RunResult&
   const bool grid = cfg.integrator.method != Method::Arkode;
   const int N = grid ? cfg.time.steps : static_cast<int>(r.steps.size()) - 1;
   last = std::min(last, N);
+  if (grid)  // a run stopped early: the grid's steps it completed
+    last = std::min(last, static_cast<int>(std::floor(r.steps.back().t / cfg.time.T * N + 1e-6)));
   for (int want : {1, 10, 40, 60, 100, 150, 200}) {
     const int k = std::min(want, last);
     if (!cols.empty() && cols.back().step == k) continue;

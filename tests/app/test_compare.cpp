@@ -69,6 +69,11 @@ TEST_CASE("compare: the paper's step k on a fixed grid ends at k T / steps, outp
   }
   CHECK(columns.back().step == 200);
   CHECK(columns.back().record->step == 202);  // the run's own count: after both output times
+  // A run stopped at t = 5 s: the grid's steps it completed, 105 (the last column).
+  RunResult stopped = r;
+  stopped.steps.resize(107);  // t = 0, 105 grid steps, t1
+  REQUIRE(stopped.steps.back().t == Approx(5.0));
+  CHECK(paper_table_columns(cfg, stopped).back().step == 105);
   // With ARKODE a column is the k-th accepted step, no later than `last` (compared runs: one all reached).
   Config adaptive = cfg;
   adaptive.integrator.method = Method::Arkode;
