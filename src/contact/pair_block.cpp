@@ -31,43 +31,49 @@ void make_blocks(const ContactProblem& pb, RhoRule rule, std::vector<PairBlock<d
   blocks.resize(pb.size());  // every member of each block is set below
   const double scale = pb.W0->diagonal_scale();
   const Eigen::MatrixXd* W = pb.W0->dense();
+  using Vec = typename PairBlock<dim>::Vec;
   for (int i = 0; i < pb.size(); ++i) {
-    PairBlock<dim>& b = blocks[i];
+    // Computed in locals and stored once: members stored and read back at once stalled on
+    // store forwarding (a third of a small cold solve's time).
     const Eigen::Index first = pb.layout.offset(i);
-    if (W != nullptr)  // read in place: a copy through block()'s run-time sized matrix was a third of a pair's set-up
-      b.Wii = W->template block<dim, dim>(first, first);
+    Mat Wii;
+    if (W != nullptr)  // read in place: a copy through block()'s run-time sized matrix costs
+      Wii = W->template block<dim, dim>(first, first);
     else
-      b.Wii = pb.W0->block(first, dim);
-    b.E = pair<dim>(pb.Dref, i) - pair<dim>(pb.Dbeta, i);
-    b.shift = -pair<dim>(pb.u_ref, i);
-    b.shift[dim - 1] = pb.g0[i];
-    b.mubar = pb.mubar[i];
-    if (b.E.isZero(0.0)) {  // no spring to fold in (a bonded pair whose spring W0 holds, a plain problem)
-      b.M.setIdentity();
-      b.Wb = b.Wii;
-    } else {
-      const Mat A = Mat::Identity() - b.Wii * b.E.asDiagonal();
+      Wii = pb.W0->block(first, dim);
+    const Vec E = pair<dim>(pb.Dref, i) - pair<dim>(pb.Dbeta, i);
+    Mat M = Mat::Identity(), Wb = Wii;  // no spring to fold in (a bonded pair whose spring W0 holds, a plain problem)
+    if (!E.isZero(0.0)) {
+      const Mat A = Mat::Identity() - Wii * E.asDiagonal();
       if (std::abs(A.determinant()) < tuning::singular_pair) {
         std::ostringstream m;
         m << "contact node " << i << " has no stiffness left (det(I - W E) = " << A.determinant()
           << "): once its adhesion is gone nothing holds the body there; restrain the body or keep beta > 0";
         throw SolveError(m.str(), i);
       }
-      b.M = A.inverse();
-      b.Wb = b.M * b.Wii;
+      M = A.inverse();
+      Wb = M * Wii;
     }
-    b.Wb = 0.5 * (b.Wb + b.Wb.transpose());  // symmetric in exact arithmetic
-    const double lmax = largest_eigenvalue(b.Wb);
+    Wb = 0.5 * (Wb + Wb.transpose()).eval();  // symmetric in exact arithmetic
+    const double lmax = largest_eigenvalue(Wb);
+    PairBlock<dim>& b = blocks[i];
+    b.Wii = Wii;
+    b.E = E;
+    b.M = M;
+    b.Wb = Wb;
+    b.shift = -pair<dim>(pb.u_ref, i);
+    b.shift[dim - 1] = pb.g0[i];
+    b.mubar = pb.mubar[i];
     b.prescribed = lmax <= tuning::prescribed_pair * scale;
     b.held = 0;
     for (int k = 0; k < dim; ++k)
-      if (b.Wii(k, k) <= tuning::prescribed_pair * scale) b.held |= 1u << k;
+      if (Wii(k, k) <= tuning::prescribed_pair * scale) b.held |= 1u << k;
     if (b.prescribed) {
       b.rho = 0;
     } else if (rule == RhoRule::Eigen) {
       b.rho = 1.0 / lmax;
     } else {  // paper eq. 34 (on the flexibility with the springs)
-      const double dmin = b.Wb.diagonal().minCoeff();
+      const double dmin = Wb.diagonal().minCoeff();
       b.rho = 1.0 / (dmin > 0 ? dmin : lmax);
     }
   }

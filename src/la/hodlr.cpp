@@ -36,14 +36,24 @@ void orthogonalize(const Eigen::MatrixXd& Q, Eigen::Ref<Eigen::MatrixXd> Y) {
   for (int pass = 0; pass < 2; ++pass) Y -= Q * (Q.transpose() * Y);
 }
 
-/// Q grows by `add` orthonormal columns spanning Y's (Y already orthogonal to Q).
-void grow_basis(Eigen::MatrixXd& Q, const Eigen::MatrixXd& Y, Eigen::Index add) {
+/// Q grows by at most `add` orthonormal columns spanning Y's range (Y already orthogonal to Q)
+/// above `floor`; returns how many. Directions of Y below the floor are round-off: a block of
+/// lower rank than min(rows, cols) (W0's zero rows and columns where a support holds a contact
+/// node) has no more range, and a basis grown from them was not orthogonal to Q (W0 compressed
+/// 4 % off on such an interface).
+Eigen::Index grow_basis(Eigen::MatrixXd& Q, const Eigen::MatrixXd& Y, Eigen::Index add, double floor) {
   const Eigen::Index n1 = Y.rows();
-  Eigen::MatrixXd basis = Eigen::HouseholderQR<Eigen::MatrixXd>(Y).householderQ() * Eigen::MatrixXd::Identity(n1, add);
+  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Y);
+  const Eigen::MatrixXd R = qr.matrixR().template triangularView<Eigen::Upper>();
+  Eigen::Index rank = 0;
+  while (rank < std::min(add, R.cols()) && std::abs(R(rank, rank)) > floor) ++rank;
+  if (rank == 0) return 0;
+  Eigen::MatrixXd basis = qr.householderQ() * Eigen::MatrixXd::Identity(n1, rank);
   orthogonalize(Q, basis);  // Y's round-off is not orthogonal to Q
-  basis = Eigen::HouseholderQR<Eigen::MatrixXd>(basis).householderQ() * Eigen::MatrixXd::Identity(n1, add);
-  Q.conservativeResize(n1, Q.cols() + add);
-  Q.rightCols(add) = basis;
+  basis = Eigen::HouseholderQR<Eigen::MatrixXd>(basis).householderQ() * Eigen::MatrixXd::Identity(n1, rank);
+  Q.conservativeResize(n1, Q.cols() + rank);
+  Q.rightCols(rank) = basis;
+  return rank;
 }
 
 /// B ~ Q Vq^T (Vq = B^T Q) truncated to U V^T by the SVD of the small factor, keeping the
@@ -96,8 +106,7 @@ struct RangeFinder {
       return;
     }
     const Eigen::Index add = std::min<Eigen::Index>(Y.cols(), full - Q.cols());
-    grow_basis(Q, Y, add);
-    done = Q.cols() == full;
+    done = grow_basis(Q, Y, add, floor) == 0 || Q.cols() == full;
   }
 };
 
