@@ -64,9 +64,9 @@ typename V::PlainObject project_cone(const Eigen::MatrixBase<V>& tau, double mub
 /// local vector v = (du_t, g): the slip increment and the gap (paper eq. 33).
 template <class V>
 typename V::PlainObject modified_velocity(const Eigen::MatrixBase<V>& v, double mubar) {
-  // As one vector operation: a scalar added into a component just stored stalled the loads after it.
-  using P = typename V::PlainObject;
-  return v + (mubar * tangential_norm(v)) * P::Unit(v.size(), v.size() - 1);
+  typename V::PlainObject s = v;
+  s[v.size() - 1] += mubar * tangential_norm(v);
+  return s;
 }
 
 }  // namespace rccm
