@@ -33,11 +33,13 @@ namespace {
 void say(const std::string& line) { std::cerr << line + "\n"; }
 
 void print_totals(const rccm::RunResult& r) {
-  const double per_solve = (r.wall_seconds - r.setup_seconds) / std::max(1L, r.solves.contact_solves);
+  // Times of this process (a restart's since it restarted), counts of the whole run.
+  const rccm::SolveCounts own = rccm::solves_of_this_process(r);
   std::printf("# %ld steps (%ld rejected), %ld contact solves, %.2f sweeps per solve (max %d)\n"
-              "# wall %.3f s: setup %.4f s, %.1f us per contact solve\n",
+              "# wall %.3f s%s: setup %.4f s, contact solves %.3f s (%.1f us each)\n",
               r.integrator.steps, r.integrator.rejected, r.solves.contact_solves, r.solves.sweeps_per_solve(),
-              r.solves.max_sweeps, r.wall_seconds, r.setup_seconds, 1e6 * per_solve);
+              r.solves.max_sweeps, r.wall_seconds, r.restarted_at >= 0 ? " since the restart" : "", r.setup_seconds,
+              own.seconds, 1e6 * own.seconds / double(std::max(1L, own.contact_solves)));
   const std::string threaded = rccm::threaded_sweeps_line(r.solves, rccm::blas_threads::most_products());
   if (!threaded.empty()) std::printf("# %s\n", threaded.c_str());
   if (r.solves.condensations > 0)

@@ -132,6 +132,7 @@ void Recorder::start(BetaOde& ode) {
   result_.snapshots = p.snapshots;
   if (writer_) result_.steps = writer_->resumed_steps();  // processes other than 0 write nothing (la/parallel.hpp)
   result_.restarted_at = resume_->state.t;
+  result_.solves_before_restart = p.solves;
   rows_step_ = resume_->step;
   notes_ = resume_->notes;
   result_.peak_force = p.peak_force;

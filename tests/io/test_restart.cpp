@@ -99,6 +99,14 @@ TEST_CASE("a run stopped by SIGTERM and restarted from its checkpoint gives the 
     CHECK(lines(parts + "/history.csv") == std::size_t(c.stop_at) + 2);
     CHECK(ck.state.t < 10.0);
     const RunResult restarted = run(b1(parts, c.settings), true);
+    // The times beside the wall time are this process's: the solves since the restart.
+    CHECK(restarted.solves_before_restart.contact_solves == ck.progress.solves.contact_solves);
+    CHECK(restarted.solves_before_restart.seconds == ck.progress.solves.seconds);
+    const SolveCounts own = solves_of_this_process(restarted);
+    CHECK(own.contact_solves == restarted.solves.contact_solves - ck.progress.solves.contact_solves);
+    CHECK(own.contact_solves > 0);
+    CHECK(own.seconds <= restarted.wall_seconds);
+    CHECK(reference.solves_before_restart.contact_solves == 0);
 
     REQUIRE(restarted.snapshots.size() == reference.snapshots.size());
     for (std::size_t k = 0; k < reference.snapshots.size(); ++k) {

@@ -60,6 +60,16 @@ struct RunResult {
   long strain_checks = 0;                       // small-strain checks made (Recorder::note_deformation)
   long strain_checks_left_out = 0;              // and left out: their solves would pass RunOptions::strain_check_share
   double restarted_at = -1;                     // the checkpoint's time a restart went on from; -1: none
+  SolveCounts solves_before_restart;            // the checkpoint's: `solves` less these is this process's
 };
+
+/// The contact solves this process made (a restart's since it restarted, as wall_seconds):
+/// their count and time, for the times per solve beside the wall time.
+inline SolveCounts solves_of_this_process(const RunResult& r) {
+  SolveCounts s = r.solves;
+  s.contact_solves -= r.solves_before_restart.contact_solves;
+  s.seconds -= r.solves_before_restart.seconds;
+  return s;
+}
 
 }  // namespace rccm
