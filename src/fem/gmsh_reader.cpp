@@ -33,12 +33,6 @@ void start_gmsh() {
   gmsh::logger::start();
 }
 
-/// gmsh's last error message, or the exception's text.
-std::string last_gmsh_error(const std::string& fallback) {
-  std::string e;
-  gmsh::logger::getLastError(e);
-  return e.empty() ? fallback : e;
-}
 
 /// The format version a .msh file's header states ("$MeshFormat" then "4.1 0 8"), "" if none.
 std::string msh_version(const std::string& file) {
@@ -59,6 +53,13 @@ std::string format_note(const std::string& file) {
   if (version == "4.1" || version.rfind("2.", 0) == 0) return {};
   return " (its header states " + (version.empty() ? std::string("no $MeshFormat") : "MSH " + version) +
          "; rccm reads MSH 2.2 and 4.1: gmsh writes 4.1 with `-format msh41`, e.g. `gmsh OLD.msh -save -format msh41 -o NEW.msh` for a file it reads)";
+}
+
+/// gmsh's last error message, or the exception's text, about `file`, with format_note(file).
+std::string last_gmsh_error(const std::string& fallback, const std::string& file) {
+  std::string e;
+  gmsh::logger::getLastError(e);
+  return (e.empty() ? fallback : e) + format_note(file);
 }
 
 /// The process's address space limited to what it has and what the machine can give: a mesh
@@ -151,14 +152,13 @@ class Reader {
         gmsh::model::mesh::generate(m_.dim);
       }
     } catch (const std::string& e) {
-      fail(last_gmsh_error(e) + format_note(p_.file));
+      fail(last_gmsh_error(e, p_.file));
     } catch (const InputError&) {
       throw;  // ours, already placed
     } catch (const std::exception& e) {
-      fail(last_gmsh_error(e.what()) + format_note(p_.file));
+      fail(last_gmsh_error(e.what(), p_.file));
     }
   }
-
 
   /// gmsh's global mesh sizes, as the file set them (a parameter of 0 or below there).
   void check_sizes() const {
@@ -525,14 +525,14 @@ std::string gmsh_answer(bool dimension_only, const MeshParams& p, const std::str
   } catch (const InputError& e) {
     return "E" + std::string(e.what());
   } catch (const std::string& e) {  // gmsh reports its errors as strings
-    return "E" + place + last_gmsh_error(e) + format_note(p.file);
+    return "E" + place + last_gmsh_error(e, p.file);
   } catch (const std::bad_alloc&) {
     std::ostringstream m;
     m << std::setprecision(3) << "meshing it needs more memory than the machine has (" << available_memory() / 1e9
       << " GB available): use coarser mesh sizes (the file's parameters) or fewer refinements";
     return "E" + place + m.str();
   } catch (const std::exception& e) {
-    return "E" + place + last_gmsh_error(e.what()) + format_note(p.file);
+    return "E" + place + last_gmsh_error(e.what(), p.file);
   }
 }
 

@@ -90,8 +90,7 @@ class Reader {
   }
 
   /// Rejects keys of a group that are not in `known`.
-  void only(const Setting& group, std::initializer_list<const char*> keys) const {
-    const std::vector<std::string> known(keys.begin(), keys.end());
+  void only(const Setting& group, const std::vector<std::string>& known) const {
     for (int i = 0; i < group.getLength(); ++i) {
       const Setting& child = group[i];
       one_of(child, child.getName() ? child.getName() : "", known, "unknown setting");
@@ -520,6 +519,10 @@ void check_modulus(const Reader& r, const Setting& s, double value, const char* 
   check_magnitude(r, s, value, unit);
 }
 
+/// An orthotropic material's settings besides E1 (which makes a material orthotropic).
+const std::vector<std::string> orthotropic_settings = {"E2",  "E3",  "nu12", "nu13",  "nu23", "G12",
+                                                       "G13", "G23", "angle", "axis3"};
+
 MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
   if (!mat.isGroup()) r.fail(mat, "must be a group { E = ...; nu = ...; } (or E1, E2, E3, nu12, nu13, nu23, G12; 3D: G13, G23)");
   MaterialParams p;
@@ -532,9 +535,9 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
       r.fail(mat[isotropic], "an isotropic setting beside E1: give E and nu (isotropic) or E1, E2, E3, nu12, ... "
                              "(orthotropic), not both");
   if (!p.orthotropic) {
-    for (const char* orthotropic : {"E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23", "angle", "axis3"})
+    for (const std::string& orthotropic : orthotropic_settings)
       if (mat.exists(orthotropic))
-        r.fail(mat[orthotropic], "a setting of an orthotropic material, and this one is isotropic (E, nu): an "
+        r.fail(mat[orthotropic.c_str()], "a setting of an orthotropic material, and this one is isotropic (E, nu): an "
                                  "orthotropic material gives E1, E2, E3, nu12, nu13, nu23, G12 (3D: G13, G23) instead of E and nu");
     r.only(mat, {"E", "nu", "hypothesis"});
     p.E = r.number(mat, "E");
@@ -544,7 +547,10 @@ MaterialParams read_material(const Reader& r, const Setting& mat, int dim) {
     r.check(p.nu > -1 && p.nu < 0.5, mat["nu"], "must be in (-1, 0.5)", p.nu);
     return p;
   }
-  r.only(mat, {"E1", "E2", "E3", "nu12", "nu13", "nu23", "G12", "G13", "G23", "angle", "axis3", "hypothesis"});
+  std::vector<std::string> known = {"E1"};
+  known.insert(known.end(), orthotropic_settings.begin(), orthotropic_settings.end());
+  known.push_back("hypothesis");
+  r.only(mat, known);
   for (auto [name, v] : {std::pair<const char*, double*>{"E1", &p.E1}, {"E2", &p.E2}, {"E3", &p.E3}, {"G12", &p.G12}}) {
     *v = r.number(mat, name);
     r.check(*v > 0, mat[name], "must be > 0", *v);

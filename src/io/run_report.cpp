@@ -26,7 +26,7 @@ std::vector<PaperColumn> paper_table_columns(const Config& cfg, const RunResult&
   for (int want : {1, 10, 40, 60, 100, 150, 200}) {
     const int k = std::min(want, last);
     if (!cols.empty() && cols.back().step == k) continue;
-    const StepRecord* s = &r.steps[std::min<std::size_t>(k, r.steps.size() - 1)];
+    const StepRecord* s = &r.steps[k];  // ARKODE: the k-th accepted step (k <= last <= the steps recorded)
     if (grid) {  // the accepted step that ends nearest to k T / N (the grid's own step ends there)
       const double t = cfg.time.T * k / N;
       s = &*std::min_element(r.steps.begin(), r.steps.end(), [t](const StepRecord& a, const StepRecord& b) {

@@ -40,7 +40,7 @@ void orthogonalize(const Eigen::MatrixXd& Q, Eigen::Ref<Eigen::MatrixXd> Y) {
 /// above `floor`; returns how many. Directions of Y below the floor are round-off: a block of
 /// lower rank than min(rows, cols) (W0's zero rows and columns where a support holds a contact
 /// node) has no more range, and a basis grown from them was not orthogonal to Q (W0 compressed
-/// 4 % off on such an interface).
+/// 3.5 % off on such an interface).
 Eigen::Index grow_basis(Eigen::MatrixXd& Q, const Eigen::MatrixXd& Y, Eigen::Index add, double floor) {
   const Eigen::Index n1 = Y.rows();
   const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Y);
